@@ -1,0 +1,64 @@
+#include "chart.hpp"
+
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <iomanip>
+
+#include "plumage/atomic_file.hpp"
+#include "plumage/data_paths.hpp"
+#include "plumage/error.hpp"
+
+extern char** environ;
+
+namespace plumage::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Runs argv without a shell (no quoting problems); returns the exit status.
+int run_process(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return 127;
+  int status = 0;
+  if (waitpid(pid, &status, 0) < 0) return 127;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
+}
+
+}  // namespace
+
+void draw_line_chart(const LineChart& chart, const fs::path& png) {
+  const fs::path script = data_directory() / "plot_lines.py";
+  fs::path dir = png.parent_path();
+  if (!dir.empty()) fs::create_directories(dir);
+  const fs::path csv = fs::path(png).concat(".data.csv.tmp");
+  const fs::path temp_png = fs::path(png).concat(".tmp.png");
+  {
+    std::ofstream out(csv);
+    out << "panel,series,x,y\n" << std::setprecision(10);
+    for (const auto& p : chart.points) {
+      out << '"' << p.panel << "\",\"" << p.series << "\"," << p.x << ',' << p.y << '\n';
+    }
+    if (!out) throw Error(csv.string() + ": cannot write chart data");
+  }
+  const int status = run_process({"python3", script.string(), csv.string(), temp_png.string(),
+                                  "--title", chart.title, "--xlabel", chart.x_label, "--ylabel",
+                                  chart.y_label});
+  std::error_code ec;
+  fs::remove(csv, ec);
+  if (status != 0 || !fs::exists(temp_png)) {
+    fs::remove(temp_png, ec);
+    throw Error("drawing " + png.string() + " failed (python3 " + script.string() +
+                " exited with status " + std::to_string(status) +
+                "; is python3-matplotlib installed?)");
+  }
+  fs::rename(temp_png, png);
+}
+
+}  // namespace plumage::cli

@@ -1,0 +1,26 @@
+// Line charts drawn by matplotlib (the project's one charting dependency, python3-matplotlib),
+// fed with a long-format CSV: panel, series, x, y.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace plumage::cli {
+
+struct LineChart {
+  struct Point {
+    std::string panel;
+    std::string series;
+    double x = 0, y = 0;
+  };
+  std::string title;
+  std::string x_label;
+  std::string y_label;
+  std::vector<Point> points;
+};
+
+// Writes `png` atomically; throws plumage::Error if python3 or matplotlib is missing or fails.
+void draw_line_chart(const LineChart& chart, const std::filesystem::path& png);
+
+}  // namespace plumage::cli

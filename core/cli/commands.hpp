@@ -1,0 +1,16 @@
+// Subcommands of the `plumage` executable; each file cmd_<name>.cpp adds one.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include "app_context.hpp"
+
+namespace plumage::cli {
+
+void add_plugins_command(CLI::App& app, AppContext& context);
+void add_check_command(CLI::App& app, AppContext& context);
+void add_multilayer_command(CLI::App& app, AppContext& context);
+void add_spectra_command(CLI::App& app, AppContext& context);
+void add_bench_command(CLI::App& app, AppContext& context);
+
+}  // namespace plumage::cli

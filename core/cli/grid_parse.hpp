@@ -1,0 +1,13 @@
+// Parsing of sample lists on the command line: "400:700:10" (from:to:step, inclusive) and
+// "0,30,60" (explicit values), or a mix "0,10:30:10".
+#pragma once
+
+#include <string_view>
+#include <vector>
+
+namespace plumage::cli {
+
+// Throws UsageError naming `option` and the offending text.
+std::vector<double> parse_samples(std::string_view text, std::string_view option);
+
+}  // namespace plumage::cli

@@ -1,0 +1,45 @@
+// `plumage`: the command-line front end. Exit status 0 on success, 2 for bad input (config,
+// plug-in or command line; nothing is written), 1 for any other failure.
+#include <iostream>
+
+#include "commands.hpp"
+#include "plumage/error.hpp"
+#include "plumage/version.hpp"
+
+int main(int argc, char** argv) {
+  using namespace plumage::cli;
+  AppContext context;
+  CLI::App app{"plumage: appearance of iridescent bird feathers from their nanostructure"};
+  app.set_version_flag("--version", std::string("plumage ") + plumage::kVersionString +
+                                        " (plug-in ABI " + std::to_string(plumage::kAbiVersion) + ")");
+  app.add_option("--plugin-path", context.plugin_dirs,
+                 "Extra folder(s) searched first for plug-ins (then $PLUMAGE_PLUGIN_PATH, "
+                 "beside the executable, the install prefix)");
+  app.add_flag("-q,--quiet", context.quiet, "No progress or warnings on stderr");
+  app.require_subcommand(1);
+
+  add_plugins_command(app, context);
+  add_check_command(app, context);
+  add_multilayer_command(app, context);
+  add_spectra_command(app, context);
+  add_bench_command(app, context);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  } catch (const plumage::ConfigError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const plumage::PluginError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const UsageError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,58 @@
+// Extension point: reflection of a locally planar structure under one surface point (paper §4.2,
+// §4.3). Implementations: "multilayer" (plugins/multilayer), "photonic_crystal" (table lookup).
+#pragma once
+
+#include <span>
+#include <string_view>
+
+#include "plumage/conventions.hpp"
+#include "plumage/layer_profile.hpp"
+#include "plumage/plugin.hpp"
+
+namespace plumage {
+
+// Incidence at a surface point in that point's local frame: θ is the longitudinal angle (out of
+// the cross-section plane, unchanged by the local tilt), φ_local the azimuth from the local
+// outward normal. The 3D angle α to the normal obeys cos α = cos θ · cos φ_local.
+struct LocalIncidence {
+  double theta_rad = 0.0;
+  double phi_local_rad = 0.0;
+
+  double cos_alpha() const { return std::cos(theta_rad) * std::cos(phi_local_rad); }
+};
+
+// Reflection of the specular order as a Jones matrix in the (s, p) basis of the incidence plane:
+// amplitudes a_s = E·ŝ and a_p = η0·H·ŝ with ŝ = ω_i × n̂ / |ω_i × n̂| (both in V/m), referenced
+// to the top interface at the surface point, so that reflected = R · incident.
+// A multilayer has ss = Γ_s (E-field Fresnel-type coefficient), pp = Γ_p (H-field coefficient),
+// and no cross terms; a photonic crystal may couple s and p at conical incidence.
+struct JonesReflection {
+  Complex ss{0.0, 0.0};
+  Complex sp{0.0, 0.0};  // reflected s from incident p
+  Complex ps{0.0, 0.0};  // reflected p from incident s
+  Complex pp{0.0, 0.0};
+};
+
+class LocalReflection : public PluginObject {
+ public:
+  static constexpr std::string_view plugin_kind = "local_reflection";
+
+  struct Request {
+    double lambda_nm = 550.0;
+    LocalIncidence incidence;
+    const LayerProfile* profile = nullptr;  // the stack under the point (may be unused)
+  };
+
+  // Batch evaluation: out[i] answers requests[i]. Implementations may exploit runs of requests
+  // that share a wavelength or a profile.
+  virtual void reflect(std::span<const Request> requests,
+                       std::span<JonesReflection> out) const = 0;
+
+  JonesReflection reflect_one(const Request& request) const {
+    JonesReflection r;
+    reflect(std::span<const Request>(&request, 1), std::span<JonesReflection>(&r, 1));
+    return r;
+  }
+};
+
+}  // namespace plumage

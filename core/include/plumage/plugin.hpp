@@ -1,0 +1,75 @@
+// The plug-in contract seen from a plug-in: what it registers and what its factories receive.
+//
+// A plug-in is a shared library libplumage_<name>.so that exports exactly two aliases (see
+// plugin_export.hpp): plumage_abi_version and plumage_register. plumage_register receives a
+// Registrar and adds one factory per (kind, type) it provides. Kinds are the extension points
+// of core/include/plumage/ (each interface names its kind in `plugin_kind`).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "plumage/params.hpp"
+
+namespace plumage {
+
+class PluginRegistry;
+
+// Base of every object a plug-in creates (its library stays loaded while objects exist).
+class PluginObject {
+ public:
+  virtual ~PluginObject() = default;
+};
+
+// One row of a plug-in's parameter table, printed by `plumage plugins describe <type>`.
+struct ParamSpec {
+  std::string name;
+  std::string type;           // number, integer, text, bool, interval, list, map, material...
+  std::string unit;           // nm, um, deg, 1 ... ("-" when dimensionless)
+  std::string default_value;  // "required" when there is no default
+  std::string meaning;
+};
+
+struct PluginInfo {
+  std::string kind;     // filled from the interface by Registrar::add
+  std::string type;     // the name a config uses, e.g. "multilayer"
+  std::string version;  // the plug-in's own version
+  std::string summary;  // one line
+  std::vector<ParamSpec> params;
+};
+
+// What a factory may need besides its parameters.
+struct PluginContext {
+  std::filesystem::path config_dir;  // relative file names in configs resolve against this
+  std::filesystem::path cache_dir;   // where derived data (tables...) may be cached
+  const PluginRegistry* registry = nullptr;  // to create nested plug-ins by kind and type
+};
+
+using ErasedFactory =
+    std::function<std::unique_ptr<PluginObject>(const ParamView&, const PluginContext&)>;
+
+class Registrar {
+ public:
+  virtual ~Registrar() = default;
+
+  // Registers a factory for interface I. F: (const ParamView&, const PluginContext&) ->
+  // std::unique_ptr<T> with T derived from I.
+  template <class I, class F>
+  void add(PluginInfo info, F factory) {
+    info.kind = std::string(I::plugin_kind);
+    add_erased(std::move(info),
+               [f = std::move(factory)](const ParamView& params, const PluginContext& ctx)
+                   -> std::unique_ptr<PluginObject> {
+                 std::unique_ptr<I> object = f(params, ctx);
+                 return std::unique_ptr<PluginObject>(std::move(object));
+               });
+  }
+
+  virtual void add_erased(PluginInfo info, ErasedFactory factory) = 0;
+};
+
+}  // namespace plumage

@@ -1,0 +1,13 @@
+// Version of the plumage SDK and of the plug-in ABI.
+#pragma once
+
+namespace plumage {
+
+// Bumped whenever a change to a header in core/include/plumage/ breaks binary compatibility with
+// plug-ins built against an earlier SDK (a virtual function added, a struct layout changed...).
+// The host refuses a plug-in whose exported plumage_abi_version differs.
+inline constexpr int kAbiVersion = 1;
+
+inline constexpr const char* kVersionString = "0.1.0";
+
+}  // namespace plumage

@@ -1,0 +1,36 @@
+#include "plumage/data_paths.hpp"
+
+#include <cstdlib>
+#include <vector>
+
+#include "plumage/error.hpp"
+
+namespace plumage {
+
+namespace fs = std::filesystem;
+
+fs::path executable_path() { return fs::read_symlink("/proc/self/exe"); }
+
+fs::path data_directory() {
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("PLUMAGE_DATA_DIR")) candidates.emplace_back(env);
+  try {
+    candidates.push_back(executable_path().parent_path() / ".." / "share" / "plumage");
+  } catch (const std::exception&) {
+  }
+#ifdef PLUMAGE_INSTALL_DATA_DIR
+  candidates.emplace_back(PLUMAGE_INSTALL_DATA_DIR);
+#endif
+#ifdef PLUMAGE_SOURCE_DATA_DIR
+  candidates.emplace_back(PLUMAGE_SOURCE_DATA_DIR);
+#endif
+  std::string looked;
+  for (const auto& c : candidates) {
+    std::error_code ec;
+    if (fs::exists(c / "cie1931_2deg_5nm.csv", ec)) return fs::weakly_canonical(c, ec);
+    looked += "\n  " + c.string();
+  }
+  throw Error("plumage data folder not found (set PLUMAGE_DATA_DIR); looked in:" + looked);
+}
+
+}  // namespace plumage

@@ -1,0 +1,234 @@
+// Loading plug-in libraries with Boost.DLL and creating objects by (kind, type).
+#include "plumage/plugin_registry.hpp"
+
+#include <boost/dll/shared_library.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <sstream>
+
+#include "plumage/data_paths.hpp"
+#include "plumage/version.hpp"
+
+namespace plumage {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Libraries are never unloaded before exit: objects and factories created from them may live
+// anywhere, and unloading code that is still referenced is undefined behaviour.
+std::vector<std::shared_ptr<boost::dll::shared_library>>& loaded_libraries() {
+  static auto* libraries = new std::vector<std::shared_ptr<boost::dll::shared_library>>();
+  return *libraries;
+}
+
+std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+}  // namespace
+
+class PluginRegistry::HostRegistrar final : public Registrar {
+ public:
+  HostRegistrar(PluginRegistry& registry, fs::path library)
+      : registry_(registry), library_(std::move(library)) {}
+  void add_erased(PluginInfo info, ErasedFactory factory) override {
+    registry_.add(std::move(info), std::move(factory), library_);
+  }
+
+ private:
+  PluginRegistry& registry_;
+  fs::path library_;
+};
+
+PluginRegistry::PluginRegistry() : builtin_(std::make_unique<HostRegistrar>(*this, fs::path{})) {}
+
+PluginRegistry::~PluginRegistry() = default;
+// The built-in registrar refers to its registry, so a moved registry gets a fresh one.
+PluginRegistry::PluginRegistry(PluginRegistry&& other) noexcept
+    : entries_(std::move(other.entries_)),
+      problems_(std::move(other.problems_)),
+      builtin_(std::make_unique<HostRegistrar>(*this, fs::path{})) {}
+
+PluginRegistry& PluginRegistry::operator=(PluginRegistry&& other) noexcept {
+  entries_ = std::move(other.entries_);
+  problems_ = std::move(other.problems_);
+  return *this;
+}
+
+Registrar& PluginRegistry::builtin_registrar() { return *builtin_; }
+
+std::vector<fs::path> PluginRegistry::search_path(const std::vector<fs::path>& explicit_dirs) {
+  std::vector<fs::path> dirs(explicit_dirs.begin(), explicit_dirs.end());
+  if (const char* env = std::getenv("PLUMAGE_PLUGIN_PATH")) {
+    std::stringstream ss(env);
+    for (std::string item; std::getline(ss, item, ':');) {
+      if (!item.empty()) dirs.emplace_back(item);
+    }
+  }
+  try {
+    dirs.push_back(executable_path().parent_path() / ".." / "lib" / "plumage" / "plugins");
+  } catch (const std::exception&) {
+  }
+#ifdef PLUMAGE_INSTALL_PLUGIN_DIR
+  dirs.emplace_back(PLUMAGE_INSTALL_PLUGIN_DIR);
+#endif
+  // The same folder reached twice (e.g. running the installed binary) is scanned once.
+  std::vector<fs::path> unique;
+  for (auto& d : dirs) {
+    std::error_code ec;
+    fs::path canonical = fs::weakly_canonical(d, ec);
+    if (ec) canonical = d;
+    if (std::find(unique.begin(), unique.end(), canonical) == unique.end()) {
+      unique.push_back(canonical);
+    }
+  }
+  return unique;
+}
+
+void PluginRegistry::load_search_path(const std::vector<fs::path>& dirs) {
+  for (const auto& d : dirs) load_directory(d);
+}
+
+void PluginRegistry::load_directory(const fs::path& dir) {
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return;
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string name = e.path().filename().string();
+    if (name.rfind("libplumage_", 0) == 0 && e.path().extension() == ".so") {
+      files.push_back(e.path());
+    }
+  }
+  std::sort(files.begin(), files.end());  // deterministic order
+  for (const auto& f : files) {
+    try {
+      load_library(f);
+    } catch (const PluginError& e) {
+      problems_.push_back({f, e.what()});
+    }
+  }
+}
+
+void PluginRegistry::load_library(const fs::path& file) {
+  std::error_code fec;
+  if (!fs::exists(file, fec)) {
+    throw PluginError(file.string() + ": no such plug-in library");
+  }
+  auto library = std::make_shared<boost::dll::shared_library>();
+  boost::dll::fs::error_code ec;
+  library->load(boost::dll::fs::path(file.string()), ec,
+                boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
+  if (ec) {
+    throw PluginError(file.string() + ": cannot load as a shared library: " + ec.message());
+  }
+  for (const char* symbol : {"plumage_abi_version", "plumage_register"}) {
+    if (!library->has(symbol)) {
+      throw PluginError(file.string() + ": not a plumage plug-in: it does not export '" +
+                        symbol + "' (use PLUMAGE_PLUGIN from plumage/plugin_export.hpp)");
+    }
+  }
+  const int abi = library->get_alias<const int>("plumage_abi_version");
+  if (abi != kAbiVersion) {
+    throw PluginError(file.string() + ": plug-in ABI version " + std::to_string(abi) +
+                      " does not match this plumage's ABI version " +
+                      std::to_string(kAbiVersion) + "; rebuild the plug-in against this SDK");
+  }
+  auto& register_fn = library->get_alias<void(Registrar&)>("plumage_register");
+  loaded_libraries().push_back(library);
+  HostRegistrar registrar(*this, file);
+  try {
+    register_fn(registrar);
+  } catch (const std::exception& e) {
+    throw PluginError(file.string() + ": registration failed: " + e.what());
+  }
+}
+
+void PluginRegistry::add(PluginInfo info, ErasedFactory factory, const fs::path& library) {
+  if (const Entry* existing = find(info.kind, info.type)) {
+    problems_.push_back(
+        {library, info.kind + " '" + info.type + "' is shadowed by the one in " +
+                      (existing->library.empty() ? std::string("core") : existing->library.string())});
+    return;
+  }
+  entries_.push_back({std::move(info), library, std::move(factory)});
+}
+
+const PluginRegistry::Entry* PluginRegistry::find(std::string_view kind,
+                                                  std::string_view type) const {
+  for (const auto& e : entries_) {
+    if (e.info.kind == kind && e.info.type == type) return &e;
+  }
+  return nullptr;
+}
+
+const PluginRegistry::Entry* PluginRegistry::find_any_kind(std::string_view type) const {
+  for (const auto& e : entries_) {
+    if (e.info.type == type) return &e;
+  }
+  return nullptr;
+}
+
+std::vector<std::string> PluginRegistry::types_of_kind(std::string_view kind) const {
+  std::vector<std::string> out;
+  for (const auto& e : entries_) {
+    if (e.info.kind == kind) out.push_back(e.info.type);
+  }
+  return out;
+}
+
+PluginContext PluginRegistry::context(const fs::path& config_dir) const {
+  PluginContext ctx;
+  ctx.config_dir = config_dir;
+  ctx.registry = this;
+  return ctx;
+}
+
+namespace {
+
+std::string unknown_type_message(const PluginRegistry& registry, std::string_view kind,
+                                 std::string_view type) {
+  if (const auto* other = registry.find_any_kind(type)) {
+    return "'" + std::string(type) + "' is a " + other->info.kind + " plug-in, not a " +
+           std::string(kind);
+  }
+  auto known = registry.types_of_kind(kind);
+  std::string msg = "unknown " + std::string(kind) + " type '" + std::string(type) + "'";
+  if (auto near = nearest_name(type, known)) msg += " (did you mean '" + *near + "'?)";
+  if (known.empty()) {
+    msg += "; no " + std::string(kind) +
+           " plug-ins were found (see `plumage plugins`, --plugin-path, PLUMAGE_PLUGIN_PATH)";
+  } else {
+    msg += "; available: " + join(known);
+  }
+  return msg;
+}
+
+}  // namespace
+
+std::unique_ptr<PluginObject> PluginRegistry::create_erased(std::string_view kind,
+                                                            const ParamView& section,
+                                                            std::string_view type_key,
+                                                            const PluginContext& context) const {
+  const std::string type = section.text(type_key);
+  const Entry* entry = find(kind, type);
+  if (!entry) section.fail(type_key, unknown_type_message(*this, kind, type));
+  auto object = entry->factory(section, context);
+  section.finish();
+  return object;
+}
+
+std::unique_ptr<PluginObject> PluginRegistry::create_named_erased(
+    std::string_view kind, std::string_view type, const ParamView& params,
+    const PluginContext& context) const {
+  const Entry* entry = find(kind, type);
+  if (!entry) throw PluginError(unknown_type_message(*this, kind, type));
+  auto object = entry->factory(params, context);
+  params.finish();
+  return object;
+}
+
+}  // namespace plumage

@@ -1,0 +1,93 @@
+#include "plumage/species_config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+
+#include "yaml_state.hpp"
+
+namespace plumage {
+
+namespace {
+
+// Deep merge: maps merge key by key (recursively); anything else in `over` replaces `base`.
+YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
+  if (!base.IsMap() || !over.IsMap()) return over;
+  // Key nodes are reused (force_insert) so that they keep their place in the file for messages.
+  YAML::Node out(YAML::NodeType::Map);
+  for (auto it = base.begin(); it != base.end(); ++it) {
+    const YAML::Node& o = over[it->first.Scalar()];
+    out.force_insert(it->first, o ? merged(it->second, o) : it->second);
+  }
+  for (auto it = over.begin(); it != over.end(); ++it) {
+    if (!base[it->first.Scalar()]) out.force_insert(it->first, it->second);
+  }
+  return out;
+}
+
+std::vector<std::string> variant_names(const ParamView& root) {
+  std::vector<std::string> names;
+  if (root.has("variants")) {
+    ParamView variants = root.child("variants");
+    names = variants.keys();
+    for (const auto& n : names) variants.accept(n);
+  }
+  return names;
+}
+
+}  // namespace
+
+std::vector<std::string> species_variants(const std::filesystem::path& file) {
+  auto doc = ConfigDocument::load(file);
+  return variant_names(doc.root());
+}
+
+SpeciesConfig load_species_config(const std::filesystem::path& file, const PluginRegistry& registry,
+                                  const std::string& requested_variant) {
+  auto doc = ConfigDocument::load(file);
+  ParamView raw = doc.root();
+
+  SpeciesConfig config;
+  config.file = file;
+  config.content_hash = doc.content_hash();
+  config.variants = variant_names(raw);
+  const std::string default_variant = raw.text_or("variant", "");
+  config.variant = requested_variant.empty() ? default_variant : requested_variant;
+
+  // Build the merged tree of the chosen variant.
+  YAML::Node tree = raw.state()->node;
+  if (!config.variants.empty()) {
+    if (config.variant.empty()) raw.fail("variant", "missing required key 'variant' (the default variant)");
+    if (std::find(config.variants.begin(), config.variants.end(), config.variant) ==
+        config.variants.end()) {
+      std::string msg = "unknown variant '" + config.variant + "'";
+      if (auto near = nearest_name(config.variant, config.variants)) {
+        msg += " (did you mean '" + *near + "'?)";
+      }
+      std::string all;
+      for (const auto& v : config.variants) all += (all.empty() ? "" : ", ") + v;
+      raw.fail(requested_variant.empty() ? "variant" : "variants", msg + "; variants: " + all);
+    }
+    const YAML::Node& base = raw.state()->node;
+    tree = merged(base, base["variants"][config.variant]);
+  }
+  ParamView root = make_root_view(tree, file.string());
+  root.accept("variants");
+  root.accept("variant");
+  config.root = root;
+
+  config.species = root.text("species");
+  config.common_name = root.text_or("common_name", config.species);
+  root.accept("description");
+
+  if (root.has("nominal_stack")) config.nominal_stack = parse_layer_profile(root.child("nominal_stack"));
+
+  PluginContext context = registry.context(doc.directory());
+  if (root.has("reflection")) {
+    config.reflection = registry.create<LocalReflection>(root.child("reflection"), "model", context);
+  }
+  root.finish();
+  return config;
+}
+
+}  // namespace plumage

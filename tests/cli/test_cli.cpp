@@ -1,0 +1,109 @@
+// The executable end to end: exit status 2 and a file:line message for bad input, nothing
+// written on failure, results that agree with closed forms.
+#include <catch2/catch.hpp>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Result run(const std::string& args) {
+  const std::string command = std::string(PLUMAGE_EXE) + " " + args + " 2>&1";
+  Result r;
+  FILE* pipe = popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  char buffer[4096];
+  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) r.output.append(buffer, n);
+  const int status = pclose(pipe);
+  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+fs::path scratch() {
+  fs::path dir = fs::temp_directory_path() / "plumage-test-cli";
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string source(const std::string& rel) { return std::string(PLUMAGE_SOURCE_DIR) + "/" + rel; }
+
+}  // namespace
+
+TEST_CASE("plumage plugins lists and describes the multilayer plug-in", "[cli]") {
+  auto r = run("plugins");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("local_reflection") && Catch::Contains("multilayer") &&
+                           Catch::Contains("libplumage_multilayer.so"));
+  r = run("plugins describe multilayer");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("multilayer (local_reflection"));
+  r = run("plugins describe multilayr");
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("did you mean 'multilayer'?"));
+  // Broken libraries on the path are reported, not fatal.
+  r = run(std::string("--plugin-path ") + FIXTURE_DIR + " plugins");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("problem:") && Catch::Contains("fixture_constant"));
+}
+
+TEST_CASE("plumage check accepts the shipped species and rejects bad files with file:line", "[cli]") {
+  auto r = run("check " + source("configs/species/rockdove.yaml") + " " + source("configs/species/hummingbird.yaml"));
+  CHECK(r.status == 0);
+  const fs::path bad = scratch() / "bad.yaml";
+  std::ofstream(bad) << "species: x\nnominal_stack:\n  layers:\n    - {material: keratin, thickness_nm: -5}\n";
+  r = run("check " + bad.string());
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains(bad.string() + ":4:") && Catch::Contains("out of range"));
+  r = run("check " + (scratch() / "missing.yaml").string());
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("missing.yaml: no such file"));
+}
+
+TEST_CASE("a failing run writes nothing", "[cli]") {
+  const fs::path bad = scratch() / "bad_model.yaml";
+  std::ofstream(bad) << "species: x\nnominal_stack: {layers: [{material: keratin, thickness_nm: 5}]}\n"
+                        "reflection: {model: multilayr}\n";
+  const fs::path csv = scratch() / "never.csv";
+  fs::remove(csv);
+  auto r = run("spectra " + bad.string() + " --csv " + csv.string());
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("bad_model.yaml:3:21"));
+  CHECK_FALSE(fs::exists(csv));
+}
+
+TEST_CASE("plumage multilayer prints the Airy reflection of a film", "[cli]") {
+  auto r = run("multilayer --stack \"air | 1.5 100 | air\" --lambda-nm 600 --theta-deg 0");
+  REQUIRE(r.status == 0);
+  // Last line: lambda,theta,re_rs,im_rs,re_rp,im_rp,R_s,R_p.
+  std::istringstream lines(r.output);
+  std::string line, last;
+  while (std::getline(lines, line)) if (!line.empty()) last = line;
+  double v[8];
+  char comma;
+  std::istringstream row(last);
+  for (int i = 0; i < 8; ++i) row >> v[i] >> comma;
+  // Closed form: r01 = -0.2, r12 = +0.2, δ = 2π·1.5·100/600 = π/2 → r = (-0.2 - 0.2)/(1 + 0.04)... with e^{2iδ} = -1.
+  const double expected_R = std::pow((-0.2 - 0.2) / (1.0 + 0.04), 2);
+  CHECK(v[6] == Approx(expected_R).epsilon(1e-9));
+  CHECK(v[7] == Approx(expected_R).epsilon(1e-9));
+  r = run("multilayer --stack \"air | keratn 3 | air\"");
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("did you mean 'keratin'?"));
+  r = run("multilayer --stack \"air | keratin 3 | air\" --theta-deg 95");
+  CHECK(r.status == 2);
+  r = run("multilayer --stack \"air | keratin 300 | air\" --lambda-nm 500 --format json");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("\"rows\": ["));
+}

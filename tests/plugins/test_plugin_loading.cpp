@@ -1,0 +1,87 @@
+// Every way a plug-in can be refused gives a clear PluginError, never a crash.
+#include <catch2/catch.hpp>
+
+#include "plumage/config_document.hpp"
+#include "plumage/local_reflection.hpp"
+#include "plumage/plugin_registry.hpp"
+#include "plumage/version.hpp"
+
+using namespace plumage;
+namespace fs = std::filesystem;
+
+namespace {
+fs::path fixture(const std::string& name) { return fs::path(FIXTURE_DIR) / ("libplumage_fixture_" + name + ".so"); }
+}  // namespace
+
+TEST_CASE("a good plug-in registers and creates objects", "[plugins]") {
+  PluginRegistry registry;
+  registry.load_library(fixture("good"));
+  const auto* entry = registry.find("local_reflection", "fixture_constant");
+  REQUIRE(entry != nullptr);
+  CHECK(entry->library == fixture("good"));
+  CHECK(entry->info.params.size() == 1);
+  auto doc = ConfigDocument::parse("reflection: {model: fixture_constant, amplitude: 0.25}\n", "c.yaml");
+  auto model = registry.create<LocalReflection>(doc.root().child("reflection"), "model", registry.context());
+  LayerProfile p;
+  CHECK(model->reflect_one({500.0, {}, &p}).ss == Complex(0.25, 0.0));
+}
+
+TEST_CASE("wrong ABI is refused naming the file and both versions", "[plugins]") {
+  PluginRegistry registry;
+  CHECK_THROWS_AS(registry.load_library(fixture("badabi")), PluginError);
+  CHECK_THROWS_WITH(registry.load_library(fixture("badabi")),
+                    Catch::Contains("libplumage_fixture_badabi.so") &&
+                        Catch::Contains("ABI version " + std::to_string(kAbiVersion + 100)) &&
+                        Catch::Contains("ABI version " + std::to_string(kAbiVersion)));
+  CHECK(registry.entries().empty());
+}
+
+TEST_CASE("a library without the aliases is refused", "[plugins]") {
+  PluginRegistry registry;
+  CHECK_THROWS_WITH(registry.load_library(fixture("nosymbol")),
+                    Catch::Contains("not a plumage plug-in") && Catch::Contains("plumage_abi_version"));
+}
+
+TEST_CASE("a missing or non-ELF library is refused", "[plugins]") {
+  PluginRegistry registry;
+  CHECK_THROWS_WITH(registry.load_library("/no/such/libplumage_x.so"), Catch::Contains("no such plug-in library"));
+  CHECK_THROWS_WITH(registry.load_library(fs::path(FIXTURE_DIR) / "libplumage_notalibrary.so"),
+                    Catch::Contains("cannot load as a shared library"));
+}
+
+TEST_CASE("a registration that throws is reported", "[plugins]") {
+  PluginRegistry registry;
+  CHECK_THROWS_WITH(registry.load_library(fixture("throws")), Catch::Contains("registration failed: fixture refuses"));
+}
+
+TEST_CASE("wrong kind and unknown types are config errors at the line", "[plugins]") {
+  PluginRegistry registry;
+  registry.load_library(fixture("good"));
+  auto doc = ConfigDocument::parse("a: {model: fixture_other}\nb: {model: fixture_constnt}\n", "k.yaml");
+  CHECK_THROWS_WITH(registry.create<LocalReflection>(doc.root().child("a"), "model", registry.context()),
+                    Catch::StartsWith("k.yaml:1:12: a.model: 'fixture_other' is a fixture_kind plug-in, not a local_reflection"));
+  CHECK_THROWS_WITH(registry.create<LocalReflection>(doc.root().child("b"), "model", registry.context()),
+                    Catch::Contains("did you mean 'fixture_constant'?"));
+  CHECK_THROWS_AS(registry.create_named<LocalReflection>("fixture_other", ParamView{}, registry.context()), PluginError);
+}
+
+TEST_CASE("scanning a folder records problems and keeps the good plug-ins", "[plugins]") {
+  PluginRegistry registry;
+  CHECK_NOTHROW(registry.load_directory(FIXTURE_DIR));
+  CHECK(registry.find("local_reflection", "fixture_constant") != nullptr);
+  CHECK(registry.problems().size() == 4);  // badabi, nosymbol, throws, notalibrary
+  // A second folder registering the same type is shadowed, first one wins.
+  registry.load_directory(FIXTURE_DIR);
+  CHECK(registry.entries().size() == 2);
+}
+
+TEST_CASE("search path order: explicit, environment, beside the executable, prefix", "[plugins]") {
+  ::setenv("PLUMAGE_PLUGIN_PATH", "/env/one:/env/two", 1);
+  auto dirs = PluginRegistry::search_path({"/explicit"});
+  ::unsetenv("PLUMAGE_PLUGIN_PATH");
+  REQUIRE(dirs.size() >= 4);
+  CHECK(dirs[0] == "/explicit");
+  CHECK(dirs[1] == "/env/one");
+  CHECK(dirs[2] == "/env/two");
+  CHECK(dirs[3].string().ends_with("lib/plumage/plugins"));
+}
