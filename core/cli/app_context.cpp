@@ -2,11 +2,14 @@
 
 #include <iostream>
 
+#include "plumage/builtin_plugins.hpp"
+
 namespace plumage::cli {
 
 const PluginRegistry& AppContext::registry() {
   if (!registry_) {
     registry_ = std::make_unique<PluginRegistry>();
+    register_builtin_plugins(*registry_);
     registry_->load_search_path(PluginRegistry::search_path(plugin_dirs));
   }
   return *registry_;

@@ -86,6 +86,11 @@ SpeciesConfig load_species_config(const std::filesystem::path& file, const Plugi
   if (root.has("reflection")) {
     config.reflection = registry.create<LocalReflection>(root.child("reflection"), "model", context);
   }
+  if (root.has("structure")) {
+    auto generator = registry.create<StructureGenerator>(root.child("structure"), "generator", context);
+    generator->bind(config.species, config.variant);
+    config.structure = std::move(generator);
+  }
   root.finish();
   return config;
 }

@@ -38,6 +38,9 @@ class Material {
   // For a mixture: the same mixture with another guest fraction.
   Material with_fraction(double guest_fraction) const;
   double fraction() const { return fraction_; }
+  // For a mixture: its host and guest materials (the material itself otherwise).
+  const Material& host() const { return parts_ ? (*parts_)[0] : *this; }
+  const Material& guest() const { return parts_ ? (*parts_)[1] : *this; }
 
  private:
   Kind kind_ = Kind::air;

@@ -9,6 +9,8 @@
 //     jade: {nominal_stack: ...}
 //   nominal_stack: {...}         the mean local layer stack (LayerProfile), for quick spectra
 //   reflection: {model: multilayer, ...}   the LocalReflection plug-in and its parameters
+//   structure: {generator: layered_barbule, ...}   the StructureGenerator plug-in and its
+//                                parameters (bound to species and variant, which seed it)
 #pragma once
 
 #include <filesystem>
@@ -21,6 +23,7 @@
 #include "plumage/layer_profile.hpp"
 #include "plumage/local_reflection.hpp"
 #include "plumage/plugin_registry.hpp"
+#include "plumage/structure_generator.hpp"
 
 namespace plumage {
 
@@ -34,6 +37,7 @@ struct SpeciesConfig {
   ParamView root;                     // the merged view of the selected variant
   std::optional<LayerProfile> nominal_stack;
   std::shared_ptr<const LocalReflection> reflection;
+  std::shared_ptr<const StructureGenerator> structure;
 };
 
 // Loads, merges the chosen variant (default: the file's `variant`) and validates every section,

@@ -8,39 +8,117 @@
 
 namespace plumage::multilayer {
 
+namespace {
+
+// Refractive indices at one wavelength, with keratin and melanin (Eq. 1) evaluated once per
+// wavelength rather than once per layer and request.
+class IndexAtWavelength {
+ public:
+  void set_wavelength(double lambda_nm) {
+    if (lambda_nm == lambda_nm_) return;
+    lambda_nm_ = lambda_nm;
+    keratin_ = Material::keratin().index(lambda_nm);
+    melanin_ = Material::melanin().index(lambda_nm);
+  }
+  Complex operator()(const Material& m) const {
+    switch (m.kind()) {
+      case Material::Kind::air:
+        return {1.0, 0.0};
+      case Material::Kind::keratin:
+        return keratin_;
+      case Material::Kind::melanin:
+        return melanin_;
+      case Material::Kind::mixture:
+        return (1.0 - m.fraction()) * (*this)(m.host()) + m.fraction() * (*this)(m.guest());
+      case Material::Kind::constant:
+        break;
+    }
+    return m.index(lambda_nm_);
+  }
+  double lambda_nm() const { return lambda_nm_; }
+
+ private:
+  double lambda_nm_ = -1.0;
+  Complex keratin_, melanin_;
+};
+
+// sin²α in the ambient medium, which must not absorb.
+double ambient_sin2(const Complex& ambient, const LocalIncidence& incidence, const LayerProfile& p) {
+  if (ambient.imag() != 0.0) {
+    throw Error("multilayer: the ambient medium must not absorb (" + p.ambient.name() + ")");
+  }
+  const double c = incidence.cos_alpha();
+  return ambient.real() * ambient.real() * std::max(0.0, 1.0 - c * c);
+}
+
+const LayerProfile& profile_of(const LocalReflection::Request& r) {
+  if (!r.profile) throw Error("multilayer: a reflection request carries no layer profile");
+  return *r.profile;
+}
+
+}  // namespace
+
 void MultilayerReflection::reflect(std::span<const Request> requests,
                                    std::span<JonesReflection> out) const {
   if (out.size() < requests.size()) throw Error("multilayer: output span shorter than requests");
-  // Indices are resolved once per run of requests sharing a profile and a wavelength.
-  std::vector<Complex> index;
+  IndexAtWavelength index_of;
+  // Lane buffers: kLanes requests whose stacks have the same layer count go through the
+  // vectorised recursion together; the rest through the scalar one.
+  std::vector<Complex> eps, index;
   std::vector<double> thickness;
-  const LayerProfile* resolved_profile = nullptr;
-  double resolved_lambda = -1.0;
-  double ambient_n2 = 1.0;
-  for (std::size_t i = 0; i < requests.size(); ++i) {
-    const Request& request = requests[i];
-    if (!request.profile) throw Error("multilayer: a reflection request carries no layer profile");
-    if (request.profile != resolved_profile || request.lambda_nm != resolved_lambda) {
-      const LayerProfile& p = *request.profile;
-      index.resize(p.layers.size() + 2);
-      thickness.resize(p.layers.size());
-      index.front() = p.ambient.index(request.lambda_nm);
-      for (std::size_t j = 0; j < p.layers.size(); ++j) {
-        index[j + 1] = p.layers[j].material.index(request.lambda_nm);
-        thickness[j] = p.layers[j].thickness_nm;
-      }
-      index.back() = p.substrate.index(request.lambda_nm);
-      if (index.front().imag() != 0.0) {
-        throw Error("multilayer: the ambient medium must not absorb (" + p.ambient.name() + ")");
-      }
-      ambient_n2 = index.front().real() * index.front().real();
-      resolved_profile = request.profile;
-      resolved_lambda = request.lambda_nm;
+  double k0[kLanes], sin2[kLanes];
+  StackReflection lane_out[kLanes];
+
+  std::size_t i = 0;
+  while (i < requests.size()) {
+    const std::size_t layers = profile_of(requests[i]).layers.size();
+    std::size_t run = 1;
+    while (run < kLanes && i + run < requests.size() &&
+           profile_of(requests[i + run]).layers.size() == layers) {
+      ++run;
     }
-    const double cos_a = request.incidence.cos_alpha();
-    const double sin2 = ambient_n2 * std::max(0.0, 1.0 - cos_a * cos_a);
-    const StackReflection r = reflect_stack(index, thickness, request.lambda_nm, sin2);
-    out[i] = JonesReflection{r.r_s, {0.0, 0.0}, {0.0, 0.0}, r.r_p};
+    if (run == kLanes) {
+      eps.resize((layers + 2) * kLanes);
+      thickness.resize(layers * kLanes);
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const Request& r = requests[i + l];
+        const LayerProfile& p = *r.profile;
+        index_of.set_wavelength(r.lambda_nm);
+        const Complex ambient = index_of(p.ambient);
+        eps[l] = ambient * ambient;
+        for (std::size_t j = 0; j < layers; ++j) {
+          const Complex n = index_of(p.layers[j].material);
+          eps[(j + 1) * kLanes + l] = n * n;
+          thickness[j * kLanes + l] = p.layers[j].thickness_nm;
+        }
+        const Complex sub = index_of(p.substrate);
+        eps[(layers + 1) * kLanes + l] = sub * sub;
+        k0[l] = 2.0 * 3.14159265358979323846 / r.lambda_nm;
+        sin2[l] = ambient_sin2(ambient, r.incidence, p);
+      }
+      reflect_stack_lanes(static_cast<int>(layers), eps.data(), thickness.data(), k0, sin2, lane_out);
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        out[i + l] = JonesReflection{lane_out[l].r_s, {0.0, 0.0}, {0.0, 0.0}, lane_out[l].r_p};
+      }
+    } else {
+      for (std::size_t l = 0; l < run; ++l) {
+        const Request& r = requests[i + l];
+        const LayerProfile& p = *r.profile;
+        index_of.set_wavelength(r.lambda_nm);
+        index.resize(layers + 2);
+        thickness.resize(layers);
+        index.front() = index_of(p.ambient);
+        for (std::size_t j = 0; j < layers; ++j) {
+          index[j + 1] = index_of(p.layers[j].material);
+          thickness[j] = p.layers[j].thickness_nm;
+        }
+        index.back() = index_of(p.substrate);
+        const StackReflection s =
+            reflect_stack(index, thickness, r.lambda_nm, ambient_sin2(index.front(), r.incidence, p));
+        out[i + l] = JonesReflection{s.r_s, {0.0, 0.0}, {0.0, 0.0}, s.r_p};
+      }
+    }
+    i += run;
   }
 }
 

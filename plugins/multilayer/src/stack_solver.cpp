@@ -31,7 +31,13 @@ inline Complex normal_wavenumber(Complex eps, double sin2) {
     if (z.real() == 0.0) return {1e-8, 1e-8};
     return z.real() > 0.0 ? Complex{std::sqrt(z.real()), 0.0} : Complex{0.0, std::sqrt(-z.real())};
   }
-  Complex q = std::sqrt(z);
+  // Principal square root by two real square roots (csqrt's special-value handling is not
+  // needed: z is finite and nonzero here). The branch with Im q ≥ 0 is the principal one,
+  // since Im z > 0 for passive media.
+  const double r = std::sqrt(z.real() * z.real() + z.imag() * z.imag());
+  const double t = std::sqrt(0.5 * (r + std::abs(z.real())));
+  Complex q = z.real() >= 0.0 ? Complex{t, z.imag() / (2.0 * t)}
+                              : Complex{std::abs(z.imag()) / (2.0 * t), std::copysign(t, z.imag())};
   if (q.imag() < 0.0) q = -q;
   return q;
 }
@@ -42,8 +48,9 @@ inline bool is_grazing(Complex ambient, double sin2) {
 
 // e^{2 i k0 q d}: |.| ≤ 1 because Im q ≥ 0; underflows to 0 for thick absorbers.
 inline Complex round_trip_phase(Complex q, double k0d) {
-  const double decay = -2.0 * k0d * q.imag();
   const double phase = 2.0 * k0d * q.real();
+  if (q.imag() == 0.0) return {std::cos(phase), std::sin(phase)};  // lossless, propagating
+  const double decay = -2.0 * k0d * q.imag();
   const double magnitude = decay < -745.0 ? 0.0 : std::exp(decay);
   return {magnitude * std::cos(phase), magnitude * std::sin(phase)};
 }

@@ -43,4 +43,15 @@ StackReflection reflect_stack(std::span<const Complex> index, std::span<const do
 StackResponse solve_stack(std::span<const Complex> index, std::span<const double> thickness_nm,
                           double lambda_nm, double sin2_alpha);
 
+// Number of stacks reflect_stack_lanes evaluates together (one AVX2 register of doubles).
+inline constexpr int kLanes = 4;
+
+// The same recursion as reflect_stack for kLanes stacks of equal layer count at once, laid out
+// lane-minor: permittivity ε = n² of medium j in lane l at eps[j * kLanes + l] (j = 0..L+1),
+// thickness of layer j+1 at thickness_nm[j * kLanes + l] (j = 0..L−1), and per-lane vacuum
+// wavenumber k0 (rad/nm) and sin²α. Written branch-free over lanes so the compiler vectorises
+// it; agrees with reflect_stack to rounding (tests check 1e-13).
+void reflect_stack_lanes(int layers, const Complex* eps, const double* thickness_nm,
+                         const double* k0_per_nm, const double* sin2_alpha, StackReflection* out);
+
 }  // namespace plumage::multilayer

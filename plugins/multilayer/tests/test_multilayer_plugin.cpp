@@ -31,8 +31,9 @@ TEST_CASE("multilayer plug-in loads and matches the stack solver", "[multilayer]
     std::vector<double> thick{300.0, 120.0, 500.0};
     const double c = q.incidence.cos_alpha();
     const auto r = multilayer::reflect_stack(index, thick, q.lambda_nm, 1.0 - c * c);
-    CHECK(out[i].ss == r.r_s);
-    CHECK(out[i].pp == r.r_p);
+    // Runs of four go through the vectorised lanes: equal to rounding, not bit for bit.
+    CHECK(std::abs(out[i].ss - r.r_s) < 1e-13);
+    CHECK(std::abs(out[i].pp - r.r_p) < 1e-13);
     CHECK(out[i].sp == Complex(0.0, 0.0));
     CHECK(out[i].ps == Complex(0.0, 0.0));
   }

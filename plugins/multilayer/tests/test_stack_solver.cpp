@@ -7,6 +7,7 @@
 #include <random>
 #include <vector>
 
+#include "lane_math.hpp"
 #include "stack_solver.hpp"
 
 using plumage::multilayer::Complex;
@@ -175,4 +176,60 @@ TEST_CASE("200 layers of 1 um melanin stay finite, also at grazing and under TIR
   const auto g = reflect_stack(film, d, 550.0, 1.0);
   CHECK(std::abs(g.r_s - Complex(-1.0, 0.0)) < 1e-12);
   CHECK(std::abs(g.r_p - Complex(-1.0, 0.0)) < 1e-12);
+}
+
+TEST_CASE("lane sincos and exp agree with the C library to 2 ulp", "[multilayer][lanes]") {
+  namespace lane = plumage::multilayer::lane;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double worst_sin = 0, worst_cos = 0, worst_exp = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double x = u(rng) * std::pow(10.0, (i % 6) - 1);  // |x| up to 1e4
+    lane::v4d s, c;
+    lane::sincos(lane::splat(x), s, c);
+    worst_sin = std::max(worst_sin, std::abs(s[0] - std::sin(x)));
+    worst_cos = std::max(worst_cos, std::abs(c[0] - std::cos(x)));
+    const double y = -std::abs(x) * 0.07;  // down to −700
+    worst_exp = std::max(worst_exp, std::abs(lane::exp_nonpositive(lane::splat(y))[0] - std::exp(y)) / std::exp(y));
+  }
+  CHECK(worst_sin <= 4.5e-16);
+  CHECK(worst_cos <= 4.5e-16);
+  CHECK(worst_exp <= 4.5e-16);
+  CHECK(lane::exp_nonpositive(lane::splat(-800.0))[0] == 0.0);
+}
+
+TEST_CASE("the vectorised lanes equal the scalar recursion", "[multilayer][lanes]") {
+  using plumage::multilayer::kLanes;
+  using plumage::multilayer::reflect_stack_lanes;
+  using plumage::multilayer::StackReflection;
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> n(1.0, 2.0), k(0.0, 0.2), d(5.0, 2000.0), s(0.0, 1.0);
+  for (int trial = 0; trial < 300; ++trial) {
+    const int layers = trial % 40;
+    std::vector<std::vector<Complex>> index(kLanes);
+    std::vector<std::vector<double>> thick(kLanes);
+    std::vector<Complex> eps((layers + 2) * kLanes);
+    std::vector<double> thickness(layers * kLanes), k0(kLanes), sin2(kLanes);
+    for (int l = 0; l < kLanes; ++l) {
+      index[l].push_back({1.0, 0.0});
+      for (int j = 0; j < layers; ++j) {
+        index[l].push_back({n(rng), trial % 2 ? k(rng) : 0.0});
+        thick[l].push_back(trial == 7 ? 5e6 : d(rng));  // trial 7: beyond the lane reduction range
+      }
+      index[l].push_back({trial % 3 ? 1.0 : 1.5, 0.0});
+      for (int j = 0; j < layers + 2; ++j) eps[j * kLanes + l] = index[l][j] * index[l][j];
+      for (int j = 0; j < layers; ++j) thickness[j * kLanes + l] = thick[l][j];
+      // Include normal and exactly grazing incidence among random angles.
+      sin2[l] = l == 0 ? 0.0 : (l == 1 && trial % 5 == 0 ? 1.0 : s(rng));
+      k0[l] = 2.0 * kPi / (400.0 + trial);
+    }
+    StackReflection lanes[kLanes];
+    reflect_stack_lanes(layers, eps.data(), thickness.data(), k0.data(), sin2.data(), lanes);
+    for (int l = 0; l < kLanes; ++l) {
+      const auto r = reflect_stack(index[l], thick[l], 2.0 * kPi / k0[l], sin2[l]);
+      INFO("trial " << trial << " lane " << l);
+      CHECK(std::abs(lanes[l].r_s - r.r_s) < 1e-13);
+      CHECK(std::abs(lanes[l].r_p - r.r_p) < 1e-13);
+    }
+  }
 }

@@ -1,0 +1,12 @@
+// Plug-in types implemented by core itself (no library to load):
+//   structure_generator "validation_shape"   circle, coated circle, flat layered slab
+// Call once on every registry that should offer them (the CLI and the tests do).
+#pragma once
+
+#include "plumage/plugin_registry.hpp"
+
+namespace plumage {
+
+void register_builtin_plugins(PluginRegistry& registry);
+
+}  // namespace plumage
