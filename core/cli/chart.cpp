@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 
@@ -31,6 +32,15 @@ int run_process(const std::vector<std::string>& args) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128;
 }
 
+// Debian's python3-matplotlib belongs to /usr/bin/python3, which may not be the `python3`
+// first on PATH (pyenv, venvs); $PLUMAGE_PYTHON overrides both.
+std::string python_interpreter() {
+  if (const char* env = std::getenv("PLUMAGE_PYTHON")) return env;
+  std::error_code ec;
+  if (fs::exists("/usr/bin/python3", ec)) return "/usr/bin/python3";
+  return "python3";
+}
+
 }  // namespace
 
 void draw_line_chart(const LineChart& chart, const fs::path& png) {
@@ -47,14 +57,15 @@ void draw_line_chart(const LineChart& chart, const fs::path& png) {
     }
     if (!out) throw Error(csv.string() + ": cannot write chart data");
   }
-  const int status = run_process({"python3", script.string(), csv.string(), temp_png.string(),
+  const std::string python = python_interpreter();
+  const int status = run_process({python, script.string(), csv.string(), temp_png.string(),
                                   "--title", chart.title, "--xlabel", chart.x_label, "--ylabel",
                                   chart.y_label});
   std::error_code ec;
   fs::remove(csv, ec);
   if (status != 0 || !fs::exists(temp_png)) {
     fs::remove(temp_png, ec);
-    throw Error("drawing " + png.string() + " failed (python3 " + script.string() +
+    throw Error("drawing " + png.string() + " failed (" + python + " " + script.string() +
                 " exited with status " + std::to_string(status) +
                 "; is python3-matplotlib installed?)");
   }
