@@ -1,5 +1,6 @@
 // Plug-in types implemented by core itself (no library to load):
 //   structure_generator "validation_shape"   circle, coated circle, flat layered slab
+//   scattering_solver   "approximate"        paper §4 (local reflection, Eq. 2 currents, far field)
 // Call once on every registry that should offer them (the CLI and the tests do).
 #pragma once
 

@@ -15,6 +15,9 @@
 //
 // Every instance is identical (no randomness). Frame: circles centred at the origin, the top
 // is the upper half circle; the slab's top is z = 0, x in [−W/2, W/2].
+// Bit-identical geometry on every machine: no fused multiply-add contraction (-march=native
+// would otherwise decide per machine).
+#pragma GCC optimize("fp-contract=off")
 #include <array>
 #include <cmath>
 
@@ -121,7 +124,7 @@ class ValidationShape final : public StructureGenerator {
 
 }  // namespace
 
-void register_builtin_plugins(PluginRegistry& registry) {
+void register_validation_shape(PluginRegistry& registry) {
   registry.builtin_registrar().add<StructureGenerator>(
       {.kind = "",
        .type = "validation_shape",

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "lane_math.hpp"
+#include "plumage/simd_math.hpp"
 #include "stack_solver.hpp"
 
 namespace plumage::multilayer {
@@ -12,7 +12,7 @@ namespace plumage::multilayer {
 namespace {
 
 constexpr int W = kLanes;
-static_assert(W == 4, "lane_math works on four doubles");
+static_assert(W == 4, "simd_math works on four doubles");
 
 struct LaneComplex {
   double re[W];
@@ -84,10 +84,10 @@ inline bool round_trip_phase(const double* k0_per_nm, const double* d, const Lan
     arg[l] = k0d * q.re[l];
     decay[l] = -k0d * q.im[l];
   }
-  for (int l = 0; l < W; ++l) out_of_range |= !(std::abs(arg[l]) <= lane::kMaxReducibleArgument);
-  lane::v4d s, c;
-  lane::sincos(lane::v4d{arg[0], arg[1], arg[2], arg[3]}, s, c);
-  const lane::v4d m = lane::exp_nonpositive(lane::v4d{decay[0], decay[1], decay[2], decay[3]});
+  for (int l = 0; l < W; ++l) out_of_range |= !(std::abs(arg[l]) <= simd::kMaxReducibleArgument);
+  simd::v4d s, c;
+  simd::sincos(simd::v4d{arg[0], arg[1], arg[2], arg[3]}, s, c);
+  const simd::v4d m = simd::exp_nonpositive(simd::v4d{decay[0], decay[1], decay[2], decay[3]});
   for (int l = 0; l < W; ++l) {
     phase.re[l] = m[l] * c[l];
     phase.im[l] = m[l] * s[l];

@@ -7,7 +7,7 @@
 #include <random>
 #include <vector>
 
-#include "lane_math.hpp"
+#include "plumage/simd_math.hpp"
 #include "stack_solver.hpp"
 
 using plumage::multilayer::Complex;
@@ -179,23 +179,23 @@ TEST_CASE("200 layers of 1 um melanin stay finite, also at grazing and under TIR
 }
 
 TEST_CASE("lane sincos and exp agree with the C library to 2 ulp", "[multilayer][lanes]") {
-  namespace lane = plumage::multilayer::lane;
+  namespace simd = plumage::simd;
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   double worst_sin = 0, worst_cos = 0, worst_exp = 0;
   for (int i = 0; i < 200000; ++i) {
     const double x = u(rng) * std::pow(10.0, (i % 6) - 1);  // |x| up to 1e4
-    lane::v4d s, c;
-    lane::sincos(lane::splat(x), s, c);
+    simd::v4d s, c;
+    simd::sincos(simd::splat(x), s, c);
     worst_sin = std::max(worst_sin, std::abs(s[0] - std::sin(x)));
     worst_cos = std::max(worst_cos, std::abs(c[0] - std::cos(x)));
     const double y = -std::abs(x) * 0.07;  // down to −700
-    worst_exp = std::max(worst_exp, std::abs(lane::exp_nonpositive(lane::splat(y))[0] - std::exp(y)) / std::exp(y));
+    worst_exp = std::max(worst_exp, std::abs(simd::exp_nonpositive(simd::splat(y))[0] - std::exp(y)) / std::exp(y));
   }
   CHECK(worst_sin <= 4.5e-16);
   CHECK(worst_cos <= 4.5e-16);
   CHECK(worst_exp <= 4.5e-16);
-  CHECK(lane::exp_nonpositive(lane::splat(-800.0))[0] == 0.0);
+  CHECK(simd::exp_nonpositive(simd::splat(-800.0))[0] == 0.0);
 }
 
 TEST_CASE("the vectorised lanes equal the scalar recursion", "[multilayer][lanes]") {

@@ -1,6 +1,7 @@
-// sincos and exp over four doubles at once, written with GCC/Clang vector extensions so they
-// compile to AVX2 (or to scalar code on machines without it) without depending on the
-// auto-vectoriser; glibc's scalar sin/cos/exp are opaque calls that would block vectorisation.
+// sincos and exp over four doubles at once (header-only; used by the multilayer lanes and the
+// far-field kernel), written with GCC/Clang vector extensions so they compile to AVX2 (or to
+// scalar code on machines without it) without depending on the auto-vectoriser; glibc's scalar
+// sin/cos/exp are opaque calls that would block vectorisation.
 // Accuracy: ≤ 2 ulp against glibc (tests check it) for |x| ≤ 1e5 (Cody–Waite reduction with a
 // three-part π/2, Taylor polynomials of order 17/18 on [−π/4, π/4]); callers fall back to the
 // scalar library beyond that range.
@@ -8,7 +9,7 @@
 
 #include <cstdint>
 
-namespace plumage::multilayer::lane {
+namespace plumage::simd {
 
 using v4d = double __attribute__((vector_size(32)));
 using v4i = std::int64_t __attribute__((vector_size(32)));
@@ -87,4 +88,4 @@ inline v4d exp_nonpositive(v4d x) {
   return x < -708.0 ? splat(0.0) : p * scale;
 }
 
-}  // namespace plumage::multilayer::lane
+}  // namespace plumage::simd
