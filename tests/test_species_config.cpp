@@ -3,6 +3,7 @@
 
 #include <fstream>
 
+#include "plumage/builtin_plugins.hpp"
 #include "plumage/species_config.hpp"
 
 using namespace plumage;
@@ -13,6 +14,7 @@ namespace {
 const PluginRegistry& registry() {
   static PluginRegistry r = [] {
     PluginRegistry reg;
+    register_builtin_plugins(reg);
     reg.load_directory(PLUMAGE_TEST_PLUGIN_DIR);
     return reg;
   }();

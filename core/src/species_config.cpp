@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "yaml_state.hpp"
 
@@ -33,6 +34,56 @@ std::vector<std::string> variant_names(const ParamView& root) {
     for (const auto& n : names) variants.accept(n);
   }
   return names;
+}
+
+// `solver: approximate` or `solver: {type: bem, ...}`; absent means approximate.
+std::shared_ptr<const ScatteringSolver> create_solver(const ParamView& root, const PluginRegistry& registry,
+                                                      const PluginContext& context, std::string& type) {
+  if (!root.has("solver")) {
+    type = "approximate";
+    return registry.create_named<ScatteringSolver>(type, ParamView{}, context);
+  }
+  ParamView node = root.node("solver");
+  if (node.is_map()) {
+    type = node.text("type");
+    return registry.create<ScatteringSolver>(node, "type", context);
+  }
+  type = root.text("solver");
+  try {
+    return registry.create_named<ScatteringSolver>(type, ParamView{}, context);
+  } catch (const PluginError& e) {
+    root.fail("solver", e.what());
+  }
+}
+
+SimulationSettings parse_simulation(const ParamView& root) {
+  SimulationSettings s;
+  std::optional<ParamView> node = root.child_if("simulation");
+  static constexpr std::string_view kFidelities[] = {"preview", "production", "reference"};
+  if (node) s.fidelity = node->choice_or("fidelity", kFidelities, "production");
+  // Presets: preview is for looking, production is the paper's grid, reference doubles it.
+  double step = 6.0;
+  if (s.fidelity == "preview") {
+    s.instances = 10, step = 30.0, s.incident_grid = 5, s.pattern_samples = 200, s.projected_samples = 512;
+  } else if (s.fidelity == "reference") {
+    s.instances = 100, step = 3.0, s.pattern_samples = 800, s.projected_samples = 2048;
+  }
+  double from = 400.0, to = 694.0;
+  if (node) {
+    s.instances = static_cast<int>(node->integer_or("instances", s.instances, Limits::closed(1, 100000)));
+    if (auto w = node->child_if("wavelengths_nm")) {
+      from = w->number_or("from", from, Limits::closed(100, 5000));
+      to = w->number_or("to", to, Limits::closed(100, 5000));
+      step = w->number_or("step", step, Limits::positive());
+      if (to < from) w->fail("to", "the wavelength range is inverted (to < from)");
+    }
+    s.incident_grid = static_cast<int>(node->integer_or("incident_grid", s.incident_grid, Limits::closed(1, 1000)));
+    s.pattern_samples = static_cast<int>(node->integer_or("pattern_samples", s.pattern_samples, Limits::closed(2, 100000)));
+    s.projected_samples = static_cast<int>(node->integer_or("projected_samples", s.projected_samples, Limits::closed(2, 100000)));
+    s.azimuth_jitter_deg = node->number_or("azimuth_jitter_deg", s.azimuth_jitter_deg, Limits::closed(0, 45));
+  }
+  for (double l = from; l <= to + 1e-9; l += step) s.wavelengths_nm.push_back(l);
+  return s;
 }
 
 }  // namespace
@@ -91,6 +142,8 @@ SpeciesConfig load_species_config(const std::filesystem::path& file, const Plugi
     generator->bind(config.species, config.variant);
     config.structure = std::move(generator);
   }
+  config.solver = create_solver(root, registry, context, config.solver_type);
+  config.simulation = parse_simulation(root);
   root.finish();
   return config;
 }

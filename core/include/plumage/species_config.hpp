@@ -23,9 +23,26 @@
 #include "plumage/layer_profile.hpp"
 #include "plumage/local_reflection.hpp"
 #include "plumage/plugin_registry.hpp"
+#include "plumage/scattering_solver.hpp"
 #include "plumage/structure_generator.hpp"
 
 namespace plumage {
+
+// How much to simulate (DESIGN §7). `fidelity` picks a preset; explicit keys override it.
+//   simulation: {fidelity: production, instances: 50, wavelengths_nm: {from: 400, to: 694, step: 6},
+//                incident_grid: 20, pattern_samples: 400, projected_samples: 1024,
+//                azimuth_jitter_deg: 2}
+struct SimulationSettings {
+  std::string fidelity = "production";
+  int instances = 50;
+  std::vector<double> wavelengths_nm;  // production: 400, 406, …, 694
+  int incident_grid = 20;              // (cos θ_i, cos φ_i) = (a, b)/grid, a, b = 1..grid
+  int pattern_samples = 400;           // bin centres in φ_o on (−90°, 90°)
+  int projected_samples = 1024;        // uniform in ω_o,x, for noise statistics
+  // Instance n of N sees φ_i + δ_n with δ spread linearly over ±jitter (reference behaviour:
+  // smears the per-instance specular direction).
+  double azimuth_jitter_deg = 2.0;
+};
 
 struct SpeciesConfig {
   std::filesystem::path file;
@@ -38,6 +55,9 @@ struct SpeciesConfig {
   std::optional<LayerProfile> nominal_stack;
   std::shared_ptr<const LocalReflection> reflection;
   std::shared_ptr<const StructureGenerator> structure;
+  std::shared_ptr<const ScatteringSolver> solver;  // `solver:` (default: approximate)
+  std::string solver_type;
+  SimulationSettings simulation;
 };
 
 // Loads, merges the chosen variant (default: the file's `variant`) and validates every section,
