@@ -8,6 +8,7 @@
 #include "plumage/far_field.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "solver/approximate_solver.hpp"
+#include "solver/tent_integrals.hpp"
 
 using namespace plumage;
 
@@ -239,4 +240,30 @@ TEST_CASE("absorbing nothing, reflecting nothing: zero reflectance; grazing node
   const FarField dark = solver.solve(*prepared, 500.0, 0.0, below, dirs.phi_o_rad).front();
   CHECK(dark.incident_power[0] == 0.0);
   CHECK(std::abs(dark.field[0][200][1]) == 0.0);
+}
+
+TEST_CASE("tent x plane-wave weights: series, closed form and quadrature agree", "[solver]") {
+  for (double u : {-0.99, -0.5, -1e-3, 0.0, 1e-6, 0.3, 0.75, 1.0}) {
+    simd::v4d ar, ai, br, bi;
+    detail::tent_weights_series(simd::splat(u), ar, ai, br, bi);
+    // Composite Simpson on 2000 panels of ∫₀¹ (1 − t) e^{iut} dt and ∫₀¹ t e^{iut} dt.
+    Complex qa{0, 0}, qb{0, 0};
+    const int n = 2000;
+    for (int k = 0; k <= n; ++k) {
+      const double t = static_cast<double>(k) / n, w = (k == 0 || k == n) ? 1 : (k % 2 ? 4 : 2);
+      qa += w * (1 - t) * std::polar(1.0, u * t);
+      qb += w * t * std::polar(1.0, u * t);
+    }
+    qa /= 3.0 * n;
+    qb /= 3.0 * n;
+    INFO("u = " << u);
+    CHECK(std::abs(Complex(ar[0], ai[0]) - qa) < 1e-12);
+    CHECK(std::abs(Complex(br[0], bi[0]) - qb) < 1e-12);
+    if (std::abs(u) > 0.1) {
+      Complex a, b;
+      detail::tent_weights_closed(u, a, b);
+      CHECK(std::abs(a - qa) < 1e-12);
+      CHECK(std::abs(b - qb) < 1e-12);
+    }
+  }
 }

@@ -25,6 +25,10 @@ std::string machine_description() {
   os.precision(3);
   os << model << " (" << std::thread::hardware_concurrency() << " cores), "
      << static_cast<double>(pages) * static_cast<double>(page) / (1024.0 * 1024 * 1024) << " GiB";
+  // Timings on a shared machine mean little without the load they ran under.
+  std::ifstream loadavg("/proc/loadavg");
+  double load = 0;
+  if (loadavg >> load) os << ", load " << load;
   return os.str();
 }
 

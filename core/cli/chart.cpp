@@ -43,12 +43,33 @@ std::string python_interpreter() {
 
 }  // namespace
 
-void draw_line_chart(const LineChart& chart, const fs::path& png) {
-  const fs::path script = data_directory() / "plot_lines.py";
+void draw_script_chart(const std::string& script_name, const std::vector<std::string>& inputs,
+                       const fs::path& png, const std::string& title,
+                       const std::vector<std::string>& extra_args) {
+  const fs::path script = data_directory() / script_name;
   fs::path dir = png.parent_path();
   if (!dir.empty()) fs::create_directories(dir);
-  const fs::path csv = fs::path(png).concat(".data.csv.tmp");
   const fs::path temp_png = fs::path(png).concat(".tmp.png");
+  const std::string python = python_interpreter();
+  std::vector<std::string> args{python, script.string()};
+  args.insert(args.end(), inputs.begin(), inputs.end());
+  args.push_back(temp_png.string());
+  args.push_back("--title");
+  args.push_back(title);
+  args.insert(args.end(), extra_args.begin(), extra_args.end());
+  const int status = run_process(args);
+  std::error_code ec;
+  if (status != 0 || !fs::exists(temp_png)) {
+    fs::remove(temp_png, ec);
+    throw Error("drawing " + png.string() + " failed (" + python + " " + script.string() +
+                " exited with status " + std::to_string(status) +
+                "; is python3-matplotlib installed?)");
+  }
+  fs::rename(temp_png, png);
+}
+
+void draw_line_chart(const LineChart& chart, const fs::path& png) {
+  const fs::path csv = fs::path(png).concat(".data.csv.tmp");
   {
     std::ofstream out(csv);
     out << "panel,series,x,y\n" << std::setprecision(10);
@@ -57,19 +78,16 @@ void draw_line_chart(const LineChart& chart, const fs::path& png) {
     }
     if (!out) throw Error(csv.string() + ": cannot write chart data");
   }
-  const std::string python = python_interpreter();
-  const int status = run_process({python, script.string(), csv.string(), temp_png.string(),
-                                  "--title", chart.title, "--xlabel", chart.x_label, "--ylabel",
-                                  chart.y_label});
+  try {
+    draw_script_chart("plot_lines.py", {csv.string()}, png, chart.title,
+                      {"--xlabel", chart.x_label, "--ylabel", chart.y_label});
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(csv, ec);
+    throw;
+  }
   std::error_code ec;
   fs::remove(csv, ec);
-  if (status != 0 || !fs::exists(temp_png)) {
-    fs::remove(temp_png, ec);
-    throw Error("drawing " + png.string() + " failed (" + python + " " + script.string() +
-                " exited with status " + std::to_string(status) +
-                "; is python3-matplotlib installed?)");
-  }
-  fs::rename(temp_png, png);
 }
 
 }  // namespace plumage::cli

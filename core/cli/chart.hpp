@@ -23,4 +23,10 @@ struct LineChart {
 // Writes `png` atomically; throws plumage::Error if python3 or matplotlib is missing or fails.
 void draw_line_chart(const LineChart& chart, const std::filesystem::path& png);
 
+// Runs share/plumage/<script> with `inputs` (data files), the PNG to write, and `--title`;
+// the PNG is written under a temporary name and renamed only on success.
+void draw_script_chart(const std::string& script, const std::vector<std::string>& inputs,
+                       const std::filesystem::path& png, const std::string& title,
+                       const std::vector<std::string>& extra_args = {});
+
 }  // namespace plumage::cli

@@ -3,6 +3,7 @@
 
 #include "commands.hpp"
 #include "plumage/config_document.hpp"
+#include "plumage/crystal_cell.hpp"
 #include "plumage/species_config.hpp"
 
 namespace plumage::cli {
@@ -23,8 +24,13 @@ void check_file(AppContext& context, const std::string& file) {
     }
     return;
   }
+  if (root.has("crystal")) {
+    const CrystalCell cell = load_crystal_cell(file);
+    if (!context.quiet) std::cout << file << ": ok (crystal " << cell.name << ")\n";
+    return;
+  }
   throw ConfigError(root.mark(), "",
-                    "not a plumage configuration: expected a top-level 'species' key");
+                    "not a plumage configuration: expected a top-level 'species' or 'crystal' key");
 }
 
 }  // namespace

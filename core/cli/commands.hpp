@@ -12,5 +12,9 @@ void add_check_command(CLI::App& app, AppContext& context);
 void add_multilayer_command(CLI::App& app, AppContext& context);
 void add_spectra_command(CLI::App& app, AppContext& context);
 void add_bench_command(CLI::App& app, AppContext& context);
+void add_simulate_command(CLI::App& app, AppContext& context);
+void add_geometry_command(CLI::App& app, AppContext& context);
+// `bench geometry` (bench_geometry.cpp), added under the `bench` subcommand.
+void add_bench_geometry_command(CLI::App& bench, AppContext& context);
 
 }  // namespace plumage::cli

@@ -107,3 +107,38 @@ TEST_CASE("plumage multilayer prints the Airy reflection of a film", "[cli]") {
   CHECK(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("\"rows\": ["));
 }
+
+TEST_CASE("plumage geometry writes instances, pictures and statistics", "[cli][geometry]") {
+  const fs::path out = scratch() / "geometry";
+  fs::remove_all(out);
+  auto r = run("geometry " + source("configs/species/hummingbird.yaml") + " --instances 2 --out " +
+               out.string() + " --stats");
+  REQUIRE(r.status == 0);
+  for (const char* f : {"hummingbird-pink-0.xsec", "hummingbird-pink-1.xsec", "hummingbird-pink-0.svg",
+                        "hummingbird-pink-1.png"}) {
+    CHECK(fs::exists(out / f));
+  }
+  CHECK_THAT(r.output, Catch::Contains("correlation length") && Catch::Contains("width (um)"));
+  std::ifstream xsec(out / "hummingbird-pink-0.xsec");
+  std::string first;
+  std::getline(xsec, first);
+  CHECK(first == "plumage-cross-section 1");
+  // Crystal species and their variants; validation shapes.
+  r = run("geometry " + source("configs/species/magpie.yaml") + " --variant teal --stats");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("regularity min"));
+  r = run("geometry " + source("configs/validation/keratin-cylinder.yaml") + " --stats");
+  CHECK(r.status == 0);
+  // A bad config writes nothing and exits 2 with file:line.
+  const fs::path bad = scratch() / "bad_structure.yaml";
+  std::ofstream(bad) << "species: bad\nstructure:\n  generator: layered_barbule\n  model: films\n"
+                        "  cortex_nm: -5\n";
+  const fs::path none = scratch() / "geometry-none";
+  fs::remove_all(none);
+  r = run("geometry " + bad.string() + " --out " + none.string());
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("bad_structure.yaml:5:"));
+  CHECK_FALSE(fs::exists(none));
+  r = run("check " + source("configs/crystals/peacock-cyan.yaml"));
+  CHECK(r.status == 0);
+}

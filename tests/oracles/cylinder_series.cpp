@@ -52,6 +52,16 @@ inline cplx der(const Family& F, int n) { return (n < 0 && (n % 2)) ? -F.fp[-n] 
 
 void finish(CylinderSolution& s) {
     const int N = s.nmax;
+    // scattered axial-field coefficients (inverse of the co/cross mapping of solve_layered)
+    const double ct = std::cos(s.theta_i);
+    s.ez.assign(2 * N + 1, 0.0);
+    s.hz.assign(2 * N + 1, 0.0);
+    for (int n = -N; n <= N; ++n) {
+        const cplx t1 = (s.pol == 1) ? s.co[n + N] : s.cr[n + N];  // along e1_o
+        const cplx t2 = (s.pol == 1) ? s.cr[n + N] : s.co[n + N];  // along e2_o
+        s.ez[n + N] = -t1 * ipow(n) * ct;
+        s.hz[n + N] = t2 * ipow(n) * ct;
+    }
     double sca = 0.0;
     cplx fwd = 0.0;
     for (int n = -N; n <= N; ++n) {
@@ -97,13 +107,18 @@ void bessel_j_orders(cplx z, int nmax, std::vector<cplx>& J) {
     }
 }
 
+// Y_n = i (J_n - H_n^(1)).  (A plain forward recurrence for Y is unstable for complex z: Y ~ H^(2)/(2i)
+// for n < |z| but ~ H^(1)/(2i)... for n > |z|, so the H^(1) part is lost to cancellation; J by backward
+// and H^(1) by forward recurrence are both stable, and their difference does not cancel badly.)
 void bessel_y_orders(cplx z, int nmax, std::vector<cplx>& Y) {
+    std::vector<cplx> J, H;
+    bessel_j_orders(z, nmax, J);
+    hankel1_orders(z, nmax, H);
     Y.assign(nmax + 1, 0.0);
     const plumage::bem::JY01 b = plumage::bem::bessel_jy01(z);
+    for (int n = 0; n <= nmax; ++n) Y[n] = cplx(0.0, 1.0) * (J[n] - H[n]);
     Y[0] = b.y0;
     if (nmax >= 1) Y[1] = b.y1;
-    const cplx iz = 1.0 / z;
-    for (int n = 1; n < nmax; ++n) Y[n + 1] = (2.0 * n) * iz * Y[n] - Y[n - 1];
 }
 
 void hankel1_orders(cplx z, int nmax, std::vector<cplx>& H) {
@@ -135,6 +150,30 @@ double CylinderSolution::dq_sca_dphi(double Phi) const {
     return (std::norm(t_co(Phi)) + std::norm(t_cross(Phi))) / (kPi * x);
 }
 
+AxialFields scattered_axial_fields(const CylinderSolution& s, double rho_um, double Phi) {
+    std::vector<cplx> H;
+    hankel1_orders(cplx(s.gamma0 * rho_um, 0.0), s.nmax, H);
+    AxialFields f{0.0, 0.0};
+    for (int n = -s.nmax; n <= s.nmax; ++n) {
+        const cplx hn = (n < 0 && (n % 2)) ? -H[-n] : H[std::abs(n)];
+        const cplx e = std::polar(1.0, n * Phi);
+        f.e_axis += s.ez[n + s.nmax] * hn * e;
+        f.eta0_h_axis += s.hz[n + s.nmax] * hn * e;
+    }
+    return f;
+}
+
+Vec3c far_field_vector(const CylinderSolution& s, double phi_i, double phi_o) {
+    const double Phi = scattering_angle(phi_o, phi_i);
+    const cplx tc = s.t_co(Phi), tx = s.t_cross(Phi);
+    const cplx t1 = (s.pol == 1) ? tc : tx, t2 = (s.pol == 1) ? tx : tc;
+    const double st = std::sin(s.theta_i), ct = std::cos(s.theta_i);
+    const double sp = std::sin(phi_o), cp = std::cos(phi_o);
+    const cplx pre = std::sqrt(2.0 / (kPi * s.gamma0)) * std::polar(1.0, 0.75 * kPi);
+    // e1_o = (sin t sin phi_o, cos t, sin t cos phi_o), e2_o = (-cos phi_o, 0, sin phi_o)
+    return {pre * (t1 * (st * sp) - t2 * cp), pre * (t1 * ct), pre * (t1 * (st * cp) + t2 * sp)};
+}
+
 FarField far_field(const CylinderSolution& s, const std::vector<double>& Phi) {
     FarField f;
     f.t_co.reserve(Phi.size());
@@ -161,6 +200,9 @@ CylinderSolution solve_homogeneous_bh(double radius_um, cplx m, double lambda_um
     s.x = x;
     s.theta_i = theta_i;
     s.pol = pol;
+    s.k0 = k0;
+    s.gamma0 = k0 * std::cos(theta_i);
+    s.beta = -k0 * std::sin(theta_i);
     s.nmax = default_nmax(x);
     s.q_abs_flux = std::numeric_limits<double>::quiet_NaN();
     const int N = s.nmax;
@@ -232,6 +274,9 @@ CylinderSolution solve_layered(const std::vector<double>& radii_um, const std::v
     s.x = x;
     s.theta_i = theta_i;
     s.pol = pol;
+    s.k0 = k0;
+    s.gamma0 = g0;
+    s.beta = beta;
     s.nmax = default_nmax(x);
     const int N = s.nmax;
     s.co.assign(2 * N + 1, 0.0);

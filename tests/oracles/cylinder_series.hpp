@@ -57,7 +57,7 @@ using cplx = std::complex<double>;
 
 // Integer-order Bessel functions of complex argument (Re z > 0 or real z > 0), orders 0..nmax.
 //   J: backward (Miller) ratio recurrence anchored on J0 or J1 from numerics/hankel;
-//   Y, H^(1): forward recurrence from the order-0/1 values.
+//   H^(1): forward recurrence from the order-0/1 values;  Y_n = i (J_n - H_n^(1)).
 void bessel_j_orders(cplx z, int nmax, std::vector<cplx>& J);
 void bessel_y_orders(cplx z, int nmax, std::vector<cplx>& Y);
 void hankel1_orders(cplx z, int nmax, std::vector<cplx>& H);
@@ -66,6 +66,9 @@ struct CylinderSolution {
     double x = 0.0;          // k0 * outer radius
     double theta_i = 0.0;
     int pol = 1;
+    double k0 = 0.0;         // 2 pi / lambda  [1/um]
+    double gamma0 = 0.0;     // k0 cos theta_i
+    double beta = 0.0;       // -k0 sin theta_i (axial wavenumber along +y)
     int nmax = 0;            // orders -nmax..nmax
     std::vector<cplx> co;    // T_co(Phi)    = sum_n co[n+nmax] e^{i n Phi}
     std::vector<cplx> cr;    // T_cross(Phi) = sum_n cr[n+nmax] e^{i n Phi}
@@ -74,11 +77,28 @@ struct CylinderSolution {
     double q_abs = 0.0;      // q_ext - q_sca
     double q_abs_flux = 0.0; // layered solver only: net inward Poynting flux through the outer surface
                              // (independent of the optical theorem); NaN for the B&H solver.
+    // Scattered axial fields outside the cylinder, in the local frame of the header (factor e^{i beta y}
+    // omitted):  E_y = sum_n ez[n+nmax] H_n(gamma0 rho) e^{i n Phi},  eta0 H_y = sum_n hz[n+nmax] H_n(...) e^{i n Phi}.
+    std::vector<cplx> ez, hz;
     cplx t_co(double Phi) const;
     cplx t_cross(double Phi) const;
     // d sigma/dPhi normalised as Q: dQ_sca/dPhi = (|T_co|^2 + |T_cross|^2)/(pi x).
     double dq_sca_dphi(double Phi) const;
 };
+
+// Exact scattered axial fields (E_y, eta0 H_y) at distance rho_um >= outer radius from the axis and
+// scattering angle Phi (factor e^{i beta y} omitted); for near-field comparisons with the BEM.
+struct AxialFields {
+    cplx e_axis, eta0_h_axis;
+};
+AxialFields scattered_axial_fields(const CylinderSolution& s, double rho_um, double Phi);
+
+// FastSim-style far-field vector calE(phi_o) in the project frame (x, y, z), spec §4.1:
+//   E_sca ~ e^{i beta y} e^{i gamma0 rho} rho^{-1/2} calE,  calE = sqrt(2/(pi gamma0)) e^{3 i pi/4} (T1 e1_o + T2 e2_o).
+struct Vec3c {
+    cplx x, y, z;
+};
+Vec3c far_field_vector(const CylinderSolution& s, double phi_i, double phi_o);
 
 // Scattering angle Phi of an outgoing azimuth phi_o for incident azimuth phi_i (project frame), in (-pi, pi].
 double scattering_angle(double phi_o, double phi_i);

@@ -44,7 +44,20 @@ inline double norm(Vec2 a) { return std::sqrt(a.x * a.x + a.z * a.z); }
 using Polyline = std::vector<Vec2>;  // open curve
 using Polygon = std::vector<Vec2>;   // closed curve, counter-clockwise, last vertex ≠ first
 
-enum class RegionRole { body, cortex, melanosome, air_bubble, platelet, rod, core, channel, film };
+enum class RegionRole {
+  body,            // the barbule (keratin)
+  cortex,          // a separate keratin shell
+  melanosome,      // a melanosome or a row of touching melanosomes (necklace)
+  air_bubble,      // air inside a platelet (a chain of bubbles)
+  platelet,        // a melanin platelet (hummingbird "pancake")
+  air_gap,         // an air layer (rock dove)
+  granular_layer,  // melanin granules in a host, as an effective medium
+  mixed_core,      // the melanin-keratin mixture at the centre of a barbule
+  rod,             // a melanin rod of a photonic crystal
+  core,            // the air core of a hollow rod (or of a coated circle)
+  channel,         // an air channel of a photonic crystal
+  film             // a continuous film (layered slabs, film models)
+};
 
 std::string_view role_name(RegionRole role);
 

@@ -1,9 +1,13 @@
 // Layer profiles along top-surface normals (wave-simulation spec §2.1) and geometric validity.
+// Bit-identical geometry on every machine: no fused multiply-add contraction (-march=native
+// would otherwise decide per machine).
+#pragma GCC optimize("fp-contract=off")
 #include <algorithm>
 #include <array>
+#include <set>
 #include <cmath>
 #include <sstream>
-#include <unordered_map>
+#include <cstdint>
 
 #include "plumage/cross_section.hpp"
 #include "plumage/error.hpp"
@@ -18,6 +22,9 @@ std::string_view role_name(RegionRole role) {
     case RegionRole::melanosome: return "melanosome";
     case RegionRole::air_bubble: return "air_bubble";
     case RegionRole::platelet: return "platelet";
+    case RegionRole::air_gap: return "air_gap";
+    case RegionRole::granular_layer: return "granular_layer";
+    case RegionRole::mixed_core: return "mixed_core";
     case RegionRole::rod: return "rod";
     case RegionRole::core: return "core";
     case RegionRole::channel: return "channel";
@@ -171,25 +178,13 @@ int orient(Vec2 a, Vec2 b, Vec2 c) {
 bool bad_intersection(const Segment& s, const Segment& u) {
   const bool same_ends = (s.a == u.a && s.b == u.b) || (s.a == u.b && s.b == u.a);
   if (same_ends) return false;  // a shared edge
+  if (s.a == u.a || s.a == u.b || s.b == u.a || s.b == u.b) return false;  // a shared vertex
   const int o1 = orient(s.a, s.b, u.a), o2 = orient(s.a, s.b, u.b);
   const int o3 = orient(u.a, u.b, s.a), o4 = orient(u.a, u.b, s.b);
   if (o1 * o2 < 0 && o3 * o4 < 0) return true;  // proper crossing
   return false;  // touching at endpoints or collinear contact: allowed (shared boundaries)
 }
 
-// q lies on an edge of the polygon (collinear within rounding and between its ends).
-bool on_edge(Vec2 q, const Polygon& p) {
-  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
-    const Vec2 a = p[j], b = p[i];
-    const Vec2 d = b - a;
-    const double len = norm(d);
-    if (len == 0.0) continue;
-    if (std::abs(cross(d, q - a)) / len > 1e-7 * (1.0 + len)) continue;
-    const double t = dot(q - a, d) / (len * len);
-    if (t >= -1e-12 && t <= 1.0 + 1e-12) return true;
-  }
-  return false;
-}
 
 }  // namespace
 
@@ -242,28 +237,43 @@ std::vector<std::string> validate(const CrossSection& cs) {
       zmin = std::min(zmin, a.z); zmax = std::max(zmax, a.z);
     }
   }
-  const double cell = std::max({(xmax - xmin) / 4096.0, (zmax - zmin) / 512.0, 1e-6});
-  const long nx = static_cast<long>((xmax - xmin) / cell) + 1;
-  std::unordered_map<long, std::vector<std::size_t>> grid;
+  // Bin segments into grid cells (sorted (cell, segment) pairs) and test pairs sharing a cell.
+  // Cells about two mean segment lengths wide: each segment falls in a few cells.
+  double mean_len = 0.0;
+  for (const auto& sg : segs) mean_len += norm(sg.b - sg.a);
+  mean_len /= static_cast<double>(std::max<std::size_t>(1, segs.size()));
+  const double cell = std::max({2.0 * mean_len, (xmax - xmin) / 65536.0, 1e-6});
+  const long long nx = static_cast<long long>((xmax - xmin) / cell) + 1;
+  // (cell << 24 | segment) in one 64-bit word: sorting plain integers is several times faster.
+  std::vector<std::uint64_t> binned;
+  binned.reserve(segs.size() * 3);
+  if (segs.size() >= (1u << 24)) throw Error("validate: too many segments");
   for (std::size_t k = 0; k < segs.size(); ++k) {
     const auto& s = segs[k];
-    const long x0 = static_cast<long>((std::min(s.a.x, s.b.x) - xmin) / cell);
-    const long x1 = static_cast<long>((std::max(s.a.x, s.b.x) - xmin) / cell);
-    const long z0 = static_cast<long>((std::min(s.a.z, s.b.z) - zmin) / cell);
-    const long z1 = static_cast<long>((std::max(s.a.z, s.b.z) - zmin) / cell);
-    for (long zi = z0; zi <= z1; ++zi)
-      for (long xi = x0; xi <= x1; ++xi) grid[zi * nx + xi].push_back(k);
+    const long long x0 = static_cast<long long>((std::min(s.a.x, s.b.x) - xmin) / cell);
+    const long long x1 = static_cast<long long>((std::max(s.a.x, s.b.x) - xmin) / cell);
+    const long long z0 = static_cast<long long>((std::min(s.a.z, s.b.z) - zmin) / cell);
+    const long long z1 = static_cast<long long>((std::max(s.a.z, s.b.z) - zmin) / cell);
+    for (long long zi = z0; zi <= z1; ++zi)
+      for (long long xi = x0; xi <= x1; ++xi) {
+        binned.push_back((static_cast<std::uint64_t>(zi * nx + xi) << 24) | static_cast<std::uint64_t>(k));
+      }
   }
-  for (const auto& [key, list] : grid) {
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      for (std::size_t j = i + 1; j < list.size(); ++j) {
-        const Segment& s = segs[list[i]];
-        const Segment& u = segs[list[j]];
+  std::sort(binned.begin(), binned.end());
+  std::set<std::pair<int, int>> reported;
+  for (std::size_t g0 = 0; g0 < binned.size();) {
+    std::size_t g1 = g0;
+    while (g1 < binned.size() && (binned[g1] >> 24) == (binned[g0] >> 24)) ++g1;
+    for (std::size_t i = g0; i < g1; ++i) {
+      for (std::size_t j = i + 1; j < g1; ++j) {
+        const Segment& s = segs[binned[i] & 0xffffff];
+        const Segment& u = segs[binned[j] & 0xffffff];
         if (s.region == u.region) {
           const std::size_t d = s.index > u.index ? s.index - u.index : u.index - s.index;
           if (d <= 1 || d == s.count - 1) continue;  // neighbours share a vertex
         }
-        if (bad_intersection(s, u)) {
+        if (bad_intersection(s, u) &&
+            reported.insert({std::min(s.region, u.region), std::max(s.region, u.region)}).second) {
           std::ostringstream m;
           m << "boundaries cross: region " << s.region << " edge " << s.index << " and region "
             << u.region << " edge " << u.index << " near (" << s.a.x << ", " << s.a.z << ") nm";
@@ -271,6 +281,7 @@ std::vector<std::string> validate(const CrossSection& cs) {
         }
       }
     }
+    g0 = g1;
   }
   if (!problems.empty()) return problems;
 
@@ -292,9 +303,59 @@ std::vector<std::string> validate(const CrossSection& cs) {
     const auto b1 = static_cast<std::size_t>((box[r][1] - xmin) / bin);
     for (std::size_t k = b0; k <= std::min<std::size_t>(b1, 512); ++k) bins[k].push_back(r);
   }
+  // Large outlines get an index of their edges by x (vertical-ray point-in-polygon).
+  struct EdgeIndex {
+    double x0 = 0, dx = 1;
+    std::vector<std::vector<std::uint32_t>> bins;
+  };
+  std::vector<EdgeIndex> index(cs.regions.size());
   for (std::size_t r = 0; r < cs.regions.size(); ++r) {
     const auto& o = cs.regions[r].outline;
-    // Test point: a vertex of r not equal to any vertex of a region whose box contains it.
+    if (o.size() <= 64) continue;
+    EdgeIndex& ix = index[r];
+    const std::size_t nb = std::max<std::size_t>(8, o.size() / 4);
+    ix.x0 = box[r][0];
+    ix.dx = std::max((box[r][1] - box[r][0]) / static_cast<double>(nb), 1e-9);
+    ix.bins.assign(nb + 1, {});
+    for (std::size_t i = 0; i < o.size(); ++i) {
+      const Vec2 a = o[i], b = o[(i + 1) % o.size()];
+      const auto k0 = static_cast<std::size_t>((std::min(a.x, b.x) - ix.x0) / ix.dx);
+      const auto k1 = std::min(nb, static_cast<std::size_t>((std::max(a.x, b.x) - ix.x0) / ix.dx));
+      for (std::size_t k = k0; k <= k1; ++k) ix.bins[k].push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  // 0: outside, 1: inside, 2: on the boundary (a shared vertex or edge).
+  auto locate = [&](Vec2 q, std::size_t r) -> int {
+    const auto& o = cs.regions[r].outline;
+    auto edge_test = [&](std::size_t i, bool& inside) -> bool {
+      const Vec2 a = o[i], b = o[(i + 1) % o.size()];
+      if (a == q) return true;
+      const Vec2 d = b - a;
+      const double len = norm(d);
+      if (len > 0.0 && std::abs(cross(d, q - a)) / len <= 1e-7 * (1.0 + len)) {
+        const double t = dot(q - a, d) / (len * len);
+        if (t >= -1e-12 && t <= 1.0 + 1e-12) return true;
+      }
+      // Vertical ray upward from q.
+      if ((a.x > q.x) != (b.x > q.x)) {
+        const double z = a.z + (q.x - a.x) / (b.x - a.x) * (b.z - a.z);
+        if (z > q.z) inside = !inside;
+      }
+      return false;
+    };
+    bool inside = false;
+    if (index[r].bins.empty()) {
+      for (std::size_t i = 0; i < o.size(); ++i) if (edge_test(i, inside)) return 2;
+    } else {
+      const EdgeIndex& ix = index[r];
+      const auto k = std::min(ix.bins.size() - 1, static_cast<std::size_t>(std::max(0.0, (q.x - ix.x0) / ix.dx)));
+      for (std::uint32_t i : ix.bins[k]) if (edge_test(i, inside)) return 2;
+    }
+    return inside ? 1 : 0;
+  };
+  for (std::size_t r = 0; r < cs.regions.size(); ++r) {
+    const auto& o = cs.regions[r].outline;
+    // Test point: a vertex of r on no other region's boundary.
     for (std::size_t vi = 0; vi < o.size(); vi += std::max<std::size_t>(1, o.size() / 7)) {
       const Vec2 q = o[vi];
       const auto bq = std::min<std::size_t>(static_cast<std::size_t>((q.x - xmin) / bin), 512);
@@ -304,9 +365,9 @@ std::vector<std::string> validate(const CrossSection& cs) {
         if (other == r) continue;
         const auto& bb = box[other];
         if (q.x < bb[0] || q.x > bb[1] || q.z < bb[2] || q.z > bb[3]) continue;
-        const auto& oo = cs.regions[other].outline;
-        if (std::find(oo.begin(), oo.end(), q) != oo.end() || on_edge(q, oo)) { shared = true; break; }
-        if (point_in_polygon(q, oo)) inside.push_back(static_cast<int>(other));
+        const int where = locate(q, other);
+        if (where == 2) { shared = true; break; }
+        if (where == 1) inside.push_back(static_cast<int>(other));
       }
       if (shared) continue;
       std::vector<int> ancestors;

@@ -1,3 +1,6 @@
+// Bit-identical geometry on every machine: no fused multiply-add contraction (-march=native
+// would otherwise decide per machine).
+#pragma GCC optimize("fp-contract=off")
 #include "plumage/crystal_cell.hpp"
 
 #include <array>

@@ -1,4 +1,7 @@
 // Procedural geometry building blocks (spec geometry-and-brdf §1.1).
+// Bit-identical geometry on every machine: no fused multiply-add contraction (-march=native
+// would otherwise decide per machine).
+#pragma GCC optimize("fp-contract=off")
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -24,11 +27,17 @@ void fft_radix2(std::vector<Complex>& a, bool inverse) {
     j ^= bit;
     if (i < j) std::swap(a[i], a[j]);
   }
+  // Twiddles of the largest stage, e^{∓2πik/n}; stage `len` uses every (n/len)-th.
+  std::vector<Complex> tw(n / 2);
+  const double base = (inverse ? 2.0 : -2.0) * kPi / static_cast<double>(n);
+  for (std::size_t k = 0; k < n / 2; ++k) {
+    tw[k] = Complex(std::cos(base * static_cast<double>(k)), std::sin(base * static_cast<double>(k)));
+  }
   for (std::size_t len = 2; len <= n; len <<= 1) {
-    const double angle = (inverse ? 2.0 : -2.0) * kPi / static_cast<double>(len);
     const std::size_t half = len / 2;
+    const std::size_t stride = n / len;
     for (std::size_t k = 0; k < half; ++k) {
-      const Complex w(std::cos(angle * static_cast<double>(k)), std::sin(angle * static_cast<double>(k)));
+      const Complex w = tw[k * stride];
       for (std::size_t i = 0; i < n; i += len) {
         const Complex u = a[i + k];
         const Complex v = a[i + k + half] * w;
@@ -88,6 +97,61 @@ std::vector<double> rough_profile(std::span<const double> xs, double x_min, doub
     out[static_cast<std::size_t>(mx - out.begin())] = spec.hi_nm;
   }
   return out;
+}
+
+std::vector<double> circular_autocovariance(std::span<const double> xs, std::span<const double> v,
+                                            std::size_t count, std::size_t max_lag, double& step_nm) {
+  if (xs.size() != v.size() || xs.size() < 2 || count < 2) throw Error("circular_autocovariance: bad input");
+  const double x0 = xs.front(), x1 = xs.back();
+  step_nm = (x1 - x0) / static_cast<double>(count);
+  std::vector<double> g(count);
+  std::size_t j = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double x = x0 + step_nm * static_cast<double>(i);
+    while (j + 2 < xs.size() && xs[j + 1] < x) ++j;
+    const double dx = xs[j + 1] - xs[j];
+    const double t = dx > 0 ? std::clamp((x - xs[j]) / dx, 0.0, 1.0) : 0.0;
+    g[i] = (1.0 - t) * v[j] + t * v[j + 1];
+  }
+  double mean = 0.0;
+  for (double x : g) mean += x;
+  mean /= static_cast<double>(count);
+  for (double& x : g) x -= mean;
+  max_lag = std::min(max_lag, count - 1);
+  std::vector<double> c(max_lag + 1, 0.0);
+  if ((count & (count - 1)) == 0) {  // power of two: Wiener-Khinchin with the FFT
+    std::vector<Complex> f(g.begin(), g.end());
+    fft_radix2(f, false);
+    for (auto& v : f) v = std::norm(v);
+    fft_radix2(f, true);
+    const double scale = 1.0 / (static_cast<double>(count) * static_cast<double>(count));
+    for (std::size_t k = 0; k <= max_lag; ++k) c[k] = f[k].real() * scale;
+    return c;
+  }
+  for (std::size_t k = 0; k <= max_lag; ++k) {
+    double acc = 0.0;
+    for (std::size_t i = 0; i < count; ++i) acc += g[i] * g[(i + k) % count];
+    c[k] = acc / static_cast<double>(count);
+  }
+  return c;
+}
+
+double gaussian_correlation_length(std::span<const double> c, double step_nm) {
+  if (c.size() < 4 || !(c[0] > 0.0)) return 0.0;
+  double b = 0.0;
+  for (std::size_t k = c.size() / 2; k < c.size(); ++k) b += c[k];
+  b /= static_cast<double>(c.size() - c.size() / 2);
+  double sxx = 0.0, sxy = 0.0;
+  for (std::size_t k = 1; k < c.size(); ++k) {
+    const double r = (c[k] - b) / (c[0] - b);
+    if (r <= 0.1) break;
+    const double x = std::pow(step_nm * static_cast<double>(k), 2.0);
+    sxx += x * x;
+    sxy += x * std::log(r);
+  }
+  if (sxx == 0.0) return 0.0;
+  const double slope = sxy / sxx;  // through the origin: log r = −x/(2τ²)
+  return slope < 0.0 ? std::sqrt(-1.0 / (2.0 * slope)) : 0.0;
 }
 
 double polyline_length(const Polyline& line) {
@@ -161,10 +225,17 @@ Polyline clip_x(const Polyline& line, double x_lo, double x_hi) {
   Polyline out;
   if (line.size() < 2 || x_lo >= x_hi) return out;
   out.push_back({x_lo, z_at(line, x_lo)});
-  for (const Vec2& p : line) {
-    if (p.x > x_lo && p.x < x_hi) out.push_back(p);
-  }
+  auto first = std::upper_bound(line.begin(), line.end(), x_lo, [](double v, const Vec2& p) { return v < p.x; });
+  for (auto it = first; it != line.end() && it->x < x_hi; ++it) out.push_back(*it);
   out.push_back({x_hi, z_at(line, x_hi)});
+  return out;
+}
+
+Polyline keep_x(const Polyline& line, double x_lo, double x_hi) {
+  Polyline out;
+  for (const Vec2& p : line) {
+    if (p.x >= x_lo && p.x <= x_hi) out.push_back(p);
+  }
   return out;
 }
 
@@ -213,6 +284,41 @@ Polyline shoulder_top(double width_nm, double a, double h, double s_max, double 
   for (std::size_t k = 1; k < right.size(); ++k) p.push_back(right[k]);
   for (Vec2& v : p) v.x *= half / x_end;
   return resample_uniform(p, spacing_nm, true);
+}
+
+ArcLengthCurve::ArcLengthCurve(Polyline line) : line_(std::move(line)), s_(line_.size(), 0.0) {
+  if (line_.size() < 2) throw Error("ArcLengthCurve: needs at least two points");
+  for (std::size_t i = 1; i < line_.size(); ++i) s_[i] = s_[i - 1] + norm(line_[i] - line_[i - 1]);
+}
+
+std::size_t ArcLengthCurve::segment(double s) const {
+  auto it = std::upper_bound(s_.begin(), s_.end(), s);
+  std::size_t i = it == s_.begin() ? 0 : static_cast<std::size_t>(it - s_.begin()) - 1;
+  return std::min(i, line_.size() - 2);
+}
+
+Vec2 ArcLengthCurve::point(double s) const {
+  const std::size_t i = segment(s);
+  const double len = s_[i + 1] - s_[i];
+  const double t = len > 0 ? (s - s_[i]) / len : 0.0;
+  return line_[i] + t * (line_[i + 1] - line_[i]);
+}
+
+Vec2 ArcLengthCurve::point(double s, std::size_t& hint) const {
+  std::size_t i = std::min(hint, line_.size() - 2);
+  if (s < s_[i]) i = segment(s);
+  while (i + 2 < line_.size() && s_[i + 1] <= s) ++i;
+  hint = i;
+  const double len = s_[i + 1] - s_[i];
+  const double t = len > 0 ? (s - s_[i]) / len : 0.0;
+  return line_[i] + t * (line_[i + 1] - line_[i]);
+}
+
+Vec2 ArcLengthCurve::tangent(double s) const {
+  const std::size_t i = segment(s);
+  Vec2 d = line_[i + 1] - line_[i];
+  const double l = norm(d);
+  return l > 0 ? (1.0 / l) * d : Vec2{1.0, 0.0};
 }
 
 Polygon circle_polygon(Vec2 center, double radius, int segments) {

@@ -102,50 +102,72 @@ void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, 
 }
 
 // Kᵀ for a block of directions: Kᵀ[m, j] = ∫ Λ_m(l) e^{i(χ(l) − γ0 ρ̂_j·ρ(l))} dl, exact for
-// the tent Λ_m and the linear phase along each straight segment (tent_integrals.hpp).
-Eigen::MatrixXcd kernel_block(const PreparedTop& top, double gamma0, const std::vector<double>& chi,
-                              std::span<const double> phi_o_rad) {
-  const std::size_t verts = top.vertices.size();
-  const std::size_t segs = verts - 1;
-  Eigen::MatrixXcd kt(static_cast<Eigen::Index>(verts - 2), static_cast<Eigen::Index>(phi_o_rad.size()));
-  std::vector<double> psi(verts + 4), er(verts + 4), ei(verts + 4);
-  std::vector<double> ar(segs + 4), ai(segs + 4), br(segs + 4), bi(segs + 4);
-  for (std::size_t j = 0; j < phi_o_rad.size(); ++j) {
-    const double sx = std::sin(phi_o_rad[j]), sz = std::cos(phi_o_rad[j]);
-    for (std::size_t k = 0; k < verts; ++k) {
-      psi[k] = chi[k] - gamma0 * (sx * top.vertices[k].x + sz * top.vertices[k].z);
-    }
-    for (std::size_t k = verts; k < verts + 4; ++k) psi[k] = psi[verts - 1];
-    for (std::size_t k = 0; k < verts; k += 4) {
-      simd::v4d s, c;
-      simd::sincos(simd::v4d{psi[k], psi[k + 1], psi[k + 2], psi[k + 3]}, s, c);
-      for (int l = 0; l < 4; ++l) er[k + l] = c[l], ei[k + l] = s[l];
-    }
-    for (std::size_t k = 0; k < segs; k += 4) {
-      simd::v4d u, zr, zi;
-      for (int l = 0; l < 4; ++l) {
-        const std::size_t g = std::min(k + l, segs - 1);
-        u[l] = psi[g + 1] - psi[g];
-        // z = e^{iψ_{g+1}}·conj(e^{iψ_g})
-        zr[l] = er[g + 1] * er[g] + ei[g + 1] * ei[g];
-        zi[l] = ei[g + 1] * er[g] - er[g + 1] * ei[g];
+// the tent Λ_m and the linear phase along each straight segment (tent_integrals.hpp). Written as
+// plain loops over structure-of-arrays buffers so that they vectorise; complex products are
+// spelled out in real arithmetic (std::complex's operator* calls __muldc3 for Inf/NaN recovery).
+class KernelBuilder {
+ public:
+  explicit KernelBuilder(const PreparedTop& top) : top_(top) {
+    const std::size_t v = top.vertices.size() + 8;
+    for (auto* b : {&psi_, &er_, &ei_, &ar_, &ai_, &br_, &bi_, &u_}) b->assign(v, 0.0);
+    h_.assign(v, 0.0);
+    for (std::size_t k = 0; k + 1 < top.vertices.size(); ++k) h_[k] = top.segment_length[k];
+  }
+
+  void build(double gamma0, const std::vector<double>& chi, std::span<const double> phi_o_rad,
+             Eigen::MatrixXcd& kt) {
+    const std::size_t verts = top_.vertices.size();
+    const std::size_t segs = verts - 1;
+    const std::size_t nodes = verts - 2;
+    kt.resize(static_cast<Eigen::Index>(nodes), static_cast<Eigen::Index>(phi_o_rad.size()));
+    const Vec2* v = top_.vertices.data();
+    for (std::size_t j = 0; j < phi_o_rad.size(); ++j) {
+      const double sx = gamma0 * std::sin(phi_o_rad[j]), sz = gamma0 * std::cos(phi_o_rad[j]);
+      double* psi = psi_.data();
+      for (std::size_t k = 0; k < verts; ++k) psi[k] = chi[k] - (sx * v[k].x + sz * v[k].z);
+      for (std::size_t k = verts; k < verts + 4; ++k) psi[k] = psi[verts - 1];
+      for (std::size_t k = 0; k < verts; k += 4) {
+        simd::v4d s, c;
+        simd::sincos(simd::v4d{psi[k], psi[k + 1], psi[k + 2], psi[k + 3]}, s, c);
+        for (int l = 0; l < 4; ++l) er_[k + l] = c[l], ei_[k + l] = s[l];
       }
-      simd::v4d a_re, a_im, b_re, b_im;
-      detail::tent_weights(u, zr, zi, a_re, a_im, b_re, b_im);
-      for (int l = 0; l < 4; ++l) {
-        ar[k + l] = a_re[l], ai[k + l] = a_im[l], br[k + l] = b_re[l], bi[k + l] = b_im[l];
+      // Segment phase increments u and the tent weights A(u), B(u).
+      for (std::size_t k = 0; k < segs + 4; ++k) u_[k] = psi[k + 1] - psi[k];
+      double largest = 0.0;
+      for (std::size_t k = 0; k < segs; k += 4) {
+        simd::v4d a_re, a_im, b_re, b_im;
+        const simd::v4d u{u_[k], u_[k + 1], u_[k + 2], u_[k + 3]};
+        detail::tent_weights_series(u, a_re, a_im, b_re, b_im);
+        for (int l = 0; l < 4; ++l) {
+          ar_[k + l] = a_re[l], ai_[k + l] = a_im[l], br_[k + l] = b_re[l], bi_[k + l] = b_im[l];
+          largest = std::max(largest, std::abs(u[l]));
+        }
       }
-    }
-    // Node m (vertex m) collects B of segment m−1 and A of segment m.
-    for (std::size_t m = 1; m + 1 < verts; ++m) {
-      const Complex prev = top.segment_length[m - 1] * Complex{er[m - 1], ei[m - 1]} *
-                           Complex{br[m - 1], bi[m - 1]};
-      const Complex next = top.segment_length[m] * Complex{er[m], ei[m]} * Complex{ar[m], ai[m]};
-      kt(static_cast<Eigen::Index>(m - 1), static_cast<Eigen::Index>(j)) = prev + next;
+      if (largest > detail::kTaylorRange) {  // coarse sampling or very short λ: closed form
+        for (std::size_t k = 0; k < segs; ++k) {
+          if (std::abs(u_[k]) <= detail::kTaylorRange) continue;
+          Complex a, b;
+          detail::tent_weights_closed(u_[k], a, b);
+          ar_[k] = a.real(), ai_[k] = a.imag(), br_[k] = b.real(), bi_[k] = b.imag();
+        }
+      }
+      // Node m (vertex m) collects h·e^{iψ}·B of segment m−1 and h·e^{iψ}·A of segment m.
+      double* out = reinterpret_cast<double*>(kt.data() + static_cast<Eigen::Index>(j * nodes));
+      for (std::size_t m = 1; m <= nodes; ++m) {
+        const double pr = er_[m - 1] * br_[m - 1] - ei_[m - 1] * bi_[m - 1];
+        const double pi = er_[m - 1] * bi_[m - 1] + ei_[m - 1] * br_[m - 1];
+        const double nr = er_[m] * ar_[m] - ei_[m] * ai_[m];
+        const double ni = er_[m] * ai_[m] + ei_[m] * ar_[m];
+        out[2 * (m - 1)] = h_[m - 1] * pr + h_[m] * nr;
+        out[2 * (m - 1) + 1] = h_[m - 1] * pi + h_[m] * ni;
+      }
     }
   }
-  return kt;
-}
+
+ private:
+  const PreparedTop& top_;
+  std::vector<double> psi_, er_, ei_, ar_, ai_, br_, bi_, u_, h_;
+};
 
 }  // namespace
 
@@ -219,6 +241,8 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
   }
   const Complex prefactor = (k0 / 4.0) * std::sqrt(2.0 / (kPi * gamma0)) * std::polar(1.0, -kPi / 4);
   Eigen::MatrixXcd amplitudes(static_cast<Eigen::Index>(nodes), 12);
+  Eigen::MatrixXcd kernel_t, transforms;
+  KernelBuilder kernel(top);
   std::vector<double> chi(verts);
   for (std::size_t a = 0; a < n_phi; ++a) {
     const IncidentDirection incident{theta_i_rad, phi_i_rad[a]};
@@ -237,8 +261,8 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
     for (int p = 0; p < 2; ++p) ff.field[p].resize(n_dir);
     for (std::size_t j0 = 0; j0 < n_dir; j0 += kDirectionBlock) {
       const std::size_t nb = std::min(kDirectionBlock, n_dir - j0);
-      const Eigen::MatrixXcd kernel_t = kernel_block(top, gamma0, chi, phi_o_rad.subspan(j0, nb));
-      const Eigen::MatrixXcd transforms = kernel_t.transpose() * amplitudes;
+      kernel.build(gamma0, chi, phi_o_rad.subspan(j0, nb), kernel_t);
+      transforms.noalias() = kernel_t.transpose() * amplitudes;
       for (std::size_t jb = 0; jb < nb; ++jb) {
         const std::size_t j = j0 + jb;
         const Vec3 o{ct * std::sin(phi_o_rad[j]), -st, ct * std::cos(phi_o_rad[j])};
@@ -292,6 +316,60 @@ ApproximateSolver::NodeCurrents ApproximateSolver::currents(const Prepared& prep
     }
   }
   return out;
+}
+
+FarField ApproximateSolver::solve_direct_sum(const Prepared& prepared, double lambda_nm,
+                                            const IncidentDirection& incident,
+                                            std::span<const double> phi_o_rad) const {
+  const auto& top = dynamic_cast<const PreparedTop&>(prepared);
+  const NodeCurrents cur = currents(prepared, lambda_nm, incident);
+  const double k0 = wavenumber_per_nm(lambda_nm);
+  const double ct = std::cos(incident.theta_rad), st = std::sin(incident.theta_rad);
+  const double gamma0 = k0 * ct;
+  const double gt[3] = {0.5 - 0.5 * std::sqrt(0.6), 0.5, 0.5 + 0.5 * std::sqrt(0.6)};
+  const double gw[3] = {5.0 / 18, 8.0 / 18, 5.0 / 18};
+  FarField ff;
+  ff.lambda_nm = lambda_nm;
+  ff.incident = incident;
+  ff.phi_o_rad.assign(phi_o_rad.begin(), phi_o_rad.end());
+  const double sp = std::sin(incident.phi_rad), cp = std::cos(incident.phi_rad);
+  // Φ_i as in solve().
+  for (std::size_t m = 0; m < top.normals.size(); ++m) {
+    const double cos_a = ct * (sp * top.normals[m].x + cp * top.normals[m].z);
+    if (cos_a > 0.0) {
+      const double flux = top.node_length[m] * top.window[m] * top.window[m] * cos_a / (2.0 * kEta0_ohm);
+      ff.incident_power[0] += flux;
+      ff.incident_power[1] += flux;
+    }
+  }
+  const Complex prefactor = (k0 / 4.0) * std::sqrt(2.0 / (kPi * gamma0)) * std::polar(1.0, -kPi / 4);
+  for (int p = 0; p < 2; ++p) ff.field[p].resize(phi_o_rad.size());
+  for (std::size_t j = 0; j < phi_o_rad.size(); ++j) {
+    const Vec3 o{ct * std::sin(phi_o_rad[j]), -st, ct * std::cos(phi_o_rad[j])};
+    const double rx = std::sin(phi_o_rad[j]), rz = std::cos(phi_o_rad[j]);
+    std::array<std::array<Complex, 6>, 2> sum{};
+    for (std::size_t m = 0; m < cur.position.size(); ++m) {
+      const Vec2 c = top.vertices[m + 1];
+      for (const Vec2 end : {top.vertices[m], top.vertices[m + 2]}) {
+        const double h = norm(end - c);
+        for (int g = 0; g < 3; ++g) {
+          // Tent value 1 − t at distance t·h from the node toward `end`.
+          const Vec2 q = c + gt[g] * (end - c);
+          const Complex w = gw[g] * h * (1.0 - gt[g]) * std::polar(1.0, -gamma0 * (rx * q.x + rz * q.z));
+          for (int p = 0; p < 2; ++p) {
+            for (int k = 0; k < 6; ++k) sum[p][k] += w * cur.current[p][m][k];
+          }
+        }
+      }
+    }
+    for (int p = 0; p < 2; ++p) {
+      const CVec3 sj{sum[p][0], sum[p][1], sum[p][2]}, sm{sum[p][3], sum[p][4], sum[p][5]};
+      const Complex o_dot_j = o[0] * sj[0] + o[1] * sj[1] + o[2] * sj[2];
+      const CVec3 o_cross_m = cross3(o, sm);
+      for (int k = 0; k < 3; ++k) ff.field[p][j][k] = prefactor * (o_cross_m[k] - sj[k] + o[k] * o_dot_j);
+    }
+  }
+  return ff;
 }
 
 void register_approximate_solver(PluginRegistry& registry) {

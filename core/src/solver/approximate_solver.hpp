@@ -36,6 +36,12 @@ class ApproximateSolver final : public ScatteringSolver {
   };
   NodeCurrents currents(const Prepared& prepared, double lambda_nm, const IncidentDirection& incident) const;
 
+  // The reference code's way, kept as a baseline for benchmarks: node currents (incident phase
+  // included) on tents, 3-point Gauss on each half support, one complex exponential per node,
+  // quadrature point and direction; no GEMM.
+  FarField solve_direct_sum(const Prepared& prepared, double lambda_nm,
+                            const IncidentDirection& incident, std::span<const double> phi_o_rad) const;
+
  private:
   Currents currents_;
   double window_fraction_;

@@ -1,7 +1,9 @@
 // Entry point of libplumage_multilayer.so.
 //
 // Provides:
-//   local_reflection "multilayer"   planar stack reflection (no parameters)
+//   local_reflection "multilayer"         planar stack reflection (no parameters)
+//   structure_generator "layered_barbule" procedural barbules of types 1–4 (layered_barbule.cpp)
+#include "layered_barbule.hpp"
 #include "multilayer_reflection.hpp"
 #include "plumage/plugin_export.hpp"
 
@@ -18,6 +20,17 @@ void register_multilayer(plumage::Registrar& registrar) {
        .params = {}},
       [](const plumage::ParamView&, const plumage::PluginContext&) {
         return std::make_unique<MultilayerReflection>();
+      });
+  using plumage::multilayer::LayeredBarbule;
+  registrar.add<plumage::StructureGenerator>(
+      {.kind = "",
+       .type = "layered_barbule",
+       .version = "1.0.0",
+       .summary = "procedural barbule cross sections with layered interiors (types 1-4): granules "
+                  "under an air gap, melanosome rows, hollow platelets, conformal films",
+       .params = LayeredBarbule::param_table()},
+      [](const plumage::ParamView& params, const plumage::PluginContext&) {
+        return std::make_unique<LayeredBarbule>(params);
       });
 }
 

@@ -1,0 +1,229 @@
+// `plumage simulate CONFIG`: geometry → far fields of every instance for each work unit
+// (λ, ω_i) → a FarFieldSet file, plus optional Eq. 10 CSV and a Fig. 7-style picture.
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+#include "chart.hpp"
+#include "commands.hpp"
+#include "grid_parse.hpp"
+#include "plumage/atomic_file.hpp"
+#include "plumage/colour.hpp"
+#include "plumage/data_paths.hpp"
+#include "plumage/far_field_set.hpp"
+#include "plumage/species_config.hpp"
+#include "plumage/version.hpp"
+#include "progress.hpp"
+
+namespace plumage::cli {
+
+namespace {
+
+struct Options {
+  std::string config;
+  std::string variant;
+  std::string lambda_nm;  // default: the config's simulation wavelengths
+  std::string theta_deg = "0";
+  std::string phi_deg = "0";
+  int instances = 0;  // default: the config's
+  std::string out;
+  std::string pattern;
+  std::string csv;
+};
+
+// Azimuth offset of instance n of N: spread linearly over ±jitter (spec §1.1).
+double jitter_rad(int n, int count, double jitter_deg) {
+  if (count < 2 || jitter_deg == 0.0) return 0.0;
+  return deg_to_rad(-jitter_deg + 2.0 * jitter_deg * n / (count - 1));
+}
+
+void write_csv(const FarFieldSet& set, const std::string& file) {
+  std::ostringstream out;
+  out << std::setprecision(9)
+      << "# Instance-mean reflectance density per radian of phi_o (paper Eq. 10):\n"
+      << "#   U = mean_n cos(theta_i) |E_far|^2 / (2 eta0 Phi_i), with Phi_i the incident power on\n"
+      << "#   the lit, windowed top surface (Eq. 9); integrating U over phi_o gives the reflected\n"
+      << "#   fraction. pol: 1, 2, or mean = (pol1 + pol2)/2. Pattern direction set only.\n"
+      << "lambda_nm,theta_i_deg,phi_i_deg,pol,phi_o_deg,density_per_rad\n";
+  for (const auto& u : set.units) {
+    const auto d1 = mean_reflectance_density(u, 0), d2 = mean_reflectance_density(u, 1);
+    const auto& phi = u.instances.front().phi_o_rad;
+    for (int p = 0; p < 3; ++p) {
+      for (std::size_t j = 0; j < u.pattern_count; ++j) {
+        const double v = p == 0 ? d1[j] : p == 1 ? d2[j] : 0.5 * (d1[j] + d2[j]);
+        out << u.lambda_nm << ',' << rad_to_deg(u.nominal.theta_rad) << ','
+            << rad_to_deg(u.nominal.phi_rad) << ',' << (p == 2 ? "mean" : std::to_string(p + 1))
+            << ',' << rad_to_deg(phi[j]) << ',' << v << '\n';
+      }
+    }
+  }
+  write_text_atomically(file, out.str());
+}
+
+// Fig. 7: colour along the cone (spectrum of the density → XYZ under D65 → sRGB, one common
+// exposure so strips compare) for the instance mean and three instances, and the mean density
+// at a few wavelengths. Drawn by scripts/plot_pattern.py from two CSV files.
+void draw_pattern(const FarFieldSet& set, const std::string& png, const std::string& title) {
+  std::vector<double> lambdas;
+  std::vector<const FarFieldUnit*> units;
+  for (const auto& u : set.units) {
+    if (!units.empty() && (u.nominal.theta_rad != units.front()->nominal.theta_rad ||
+                           u.nominal.phi_rad != units.front()->nominal.phi_rad)) {
+      continue;  // one incident direction per picture: the first one
+    }
+    units.push_back(&u);
+    lambdas.push_back(u.lambda_nm);
+  }
+  if (lambdas.size() < 2) throw UsageError("--pattern needs at least two wavelengths");
+  const std::size_t dirs = units.front()->pattern_count;
+  const int shown = std::min<int>(3, static_cast<int>(units.front()->instances.size()));
+  // rows: 0 = mean, 1..3 = instances; spectra[row][direction][λ]
+  std::vector<std::vector<std::vector<double>>> spectra(1 + shown,
+      std::vector<std::vector<double>>(dirs, std::vector<double>(lambdas.size())));
+  for (std::size_t l = 0; l < units.size(); ++l) {
+    const auto mean = mean_reflectance_density(*units[l], -1);
+    for (std::size_t j = 0; j < dirs; ++j) {
+      spectra[0][j][l] = mean[j];
+      for (int n = 0; n < shown; ++n) {
+        const auto& ff = units[l]->instances[n];
+        spectra[1 + n][j][l] = 0.5 * (ff.reflectance_density(0, j) + ff.reflectance_density(1, j));
+      }
+    }
+  }
+  SpectralToXyz to_xyz(lambdas);
+  double peak = 0;
+  std::vector<std::vector<Xyz>> xyz(spectra.size(), std::vector<Xyz>(dirs));
+  for (std::size_t r = 0; r < spectra.size(); ++r) {
+    for (std::size_t j = 0; j < dirs; ++j) {
+      xyz[r][j] = to_xyz.apply(spectra[r][j]);
+      if (r == 0) peak = std::max(peak, xyz[r][j].y);
+    }
+  }
+  const double exposure = peak > 0 ? 1.0 / peak : 1.0;  // brightest mean direction at Y = 1
+  const std::filesystem::path base(png);
+  const auto strips_csv = std::filesystem::path(png).concat(".strips.csv.tmp");
+  const auto lines_csv = std::filesystem::path(png).concat(".lines.csv.tmp");
+  {
+    std::ofstream s(strips_csv);
+    s << "row,phi_o_deg,r,g,b\n";
+    const auto& phi = units.front()->instances.front().phi_o_rad;
+    for (std::size_t r = 0; r < xyz.size(); ++r) {
+      for (std::size_t j = 0; j < dirs; ++j) {
+        const Xyz c{xyz[r][j].x * exposure, xyz[r][j].y * exposure, xyz[r][j].z * exposure};
+        const Rgb8 rgb = to_srgb8(c, GamutMapping::desaturate);
+        s << (r == 0 ? std::string("mean of ") + std::to_string(units.front()->instances.size())
+                     : "instance " + std::to_string(r))
+          << ',' << rad_to_deg(phi[j]) << ',' << int(rgb.r) << ',' << int(rgb.g) << ',' << int(rgb.b) << '\n';
+      }
+    }
+    std::ofstream l(lines_csv);
+    l << "lambda_nm,phi_o_deg,density\n";
+    const std::size_t picks[] = {0, units.size() / 3, 2 * units.size() / 3, units.size() - 1};
+    for (std::size_t pick : picks) {
+      for (std::size_t j = 0; j < dirs; ++j) {
+        l << lambdas[pick] << ',' << rad_to_deg(phi[j]) << ',' << spectra[0][j][pick] << '\n';
+      }
+    }
+  }
+  draw_script_chart("plot_pattern.py", {strips_csv.string(), lines_csv.string()}, png, title);
+  std::filesystem::remove(strips_csv);
+  std::filesystem::remove(lines_csv);
+}
+
+void run(AppContext& context, const Options& o) {
+  const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
+  if (!config.structure) throw UsageError(o.config + ": no `structure:` section to simulate");
+  const auto& sim = config.simulation;
+  const auto lambdas = o.lambda_nm.empty() ? sim.wavelengths_nm : parse_samples(o.lambda_nm, "--lambda-nm");
+  const auto thetas = parse_samples(o.theta_deg, "--theta-deg");
+  const auto phis = parse_samples(o.phi_deg, "--phi-deg");
+  for (double t : thetas) {
+    if (t < 0 || t >= 90) throw UsageError("--theta-deg: angles must be in [0, 90)");
+  }
+  for (double p : phis) {
+    if (std::abs(p) >= 90) throw UsageError("--phi-deg: azimuths must be in (-90, 90)");
+  }
+  for (double l : lambdas) {
+    if (!(l > 0)) throw UsageError("--lambda-nm: wavelengths must be positive");
+  }
+  const int instances = o.instances > 0 ? o.instances : sim.instances;
+
+  // Geometry and instance-only preparation, once per instance (reused by every unit).
+  std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepared(instances);
+  tbb::parallel_for(0, instances, [&](int n) {
+    const CrossSection cs = config.structure->generate(static_cast<std::uint64_t>(n));
+    prepared[n] = config.solver->prepare(cs, config.reflection);
+  });
+
+  FarFieldSet set;
+  set.metadata = {{"producer", std::string("plumage ") + kVersionString},
+                  {"config", o.config},
+                  {"config_hash", config.content_hash},
+                  {"species", config.species},
+                  {"variant", config.variant},
+                  {"solver", config.solver_type},
+                  {"instances", std::to_string(instances)},
+                  {"azimuth_jitter_deg", std::to_string(sim.azimuth_jitter_deg)},
+                  {"field_units", "V/m*sqrt(nm) for a 1 V/m incident plane wave, e^{-i omega t}"},
+                  {"power_units", "W*nm/m^2 (per unit barbule length, nm)"}};
+  Progress progress("work units", lambdas.size() * thetas.size() * phis.size(), context.quiet);
+  std::size_t done = 0;
+  for (double theta_deg : thetas) {
+    const double theta = deg_to_rad(theta_deg);
+    const DirectionSet pattern = pattern_directions(sim.pattern_samples);
+    const DirectionSet projected = projected_directions(theta, sim.projected_samples);
+    std::vector<double> phi_o = pattern.phi_o_rad;
+    phi_o.insert(phi_o.end(), projected.phi_o_rad.begin(), projected.phi_o_rad.end());
+    for (double lambda : lambdas) {
+      for (double phi_deg : phis) {
+        FarFieldUnit unit;
+        unit.lambda_nm = lambda;
+        unit.nominal = {theta, deg_to_rad(phi_deg)};
+        unit.pattern_count = pattern.phi_o_rad.size();
+        unit.instances.resize(instances);
+        tbb::parallel_for(0, instances, [&](int n) {
+          const double phi_i[1] = {unit.nominal.phi_rad + jitter_rad(n, instances, sim.azimuth_jitter_deg)};
+          unit.instances[n] = config.solver->solve(*prepared[n], lambda, theta, phi_i, phi_o).front();
+        });
+        set.units.push_back(std::move(unit));
+        progress.advance(++done);
+      }
+    }
+  }
+  write_far_field_set(set, o.out);
+  if (!context.quiet) std::cerr << "wrote " << o.out << "\n";
+  if (!o.csv.empty()) {
+    write_csv(set, o.csv);
+    if (!context.quiet) std::cerr << "wrote " << o.csv << "\n";
+  }
+  if (!o.pattern.empty()) {
+    std::ostringstream title;
+    title << config.common_name << " (" << config.variant << "), θi = " << thetas.front()
+          << "°, φi = " << phis.front() << "°";
+    draw_pattern(set, o.pattern, title.str());
+    if (!context.quiet) std::cerr << "wrote " << o.pattern << "\n";
+  }
+}
+
+}  // namespace
+
+void add_simulate_command(CLI::App& app, AppContext& context) {
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("simulate", "Far fields of every instance of a species (paper §4)");
+  cmd->add_option("config", o->config, "Species YAML file")->required();
+  cmd->add_option("--variant", o->variant, "Variant (default: the file's)");
+  cmd->add_option("--lambda-nm", o->lambda_nm, "Wavelengths (default: the config's simulation grid)");
+  cmd->add_option("--theta-deg", o->theta_deg, "Incident θ_i in degrees (list or range)")->capture_default_str();
+  cmd->add_option("--phi-deg", o->phi_deg, "Incident φ_i in degrees (list or range)")->capture_default_str();
+  cmd->add_option("--instances", o->instances, "Barbule instances (default: the config's)");
+  cmd->add_option("--out", o->out, "FarFieldSet file to write (.ffs)")->required();
+  cmd->add_option("--pattern", o->pattern, "Draw a Fig. 7-style picture to this PNG");
+  cmd->add_option("--csv", o->csv, "Write the instance-mean Eq. 10 patterns as CSV");
+  cmd->callback([&context, o] { run(context, *o); });
+}
+
+}  // namespace plumage::cli

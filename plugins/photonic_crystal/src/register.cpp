@@ -1,0 +1,27 @@
+// Entry point of libplumage_photonic_crystal.so.
+//
+// Provides:
+//   structure_generator "crystal_barbule"   procedural barbules of types 5–7 (crystal_barbule.cpp)
+#include "crystal_barbule.hpp"
+#include "plumage/plugin_export.hpp"
+
+namespace {
+
+void register_photonic_crystal(plumage::Registrar& registrar) {
+  using plumage::photonic_crystal::CrystalBarbule;
+  registrar.add<plumage::StructureGenerator>(
+      {.kind = "",
+       .type = "crystal_barbule",
+       .version = "1.0.0",
+       .summary = "procedural barbule cross sections over a photonic crystal (types 5-7): rough "
+                  "top, crystal reference and regularity; exact model with rods, hollow cores "
+                  "and air channels under the top",
+       .params = CrystalBarbule::param_table()},
+      [](const plumage::ParamView& params, const plumage::PluginContext& context) {
+        return std::make_unique<CrystalBarbule>(params, context);
+      });
+}
+
+}  // namespace
+
+PLUMAGE_PLUGIN(register_photonic_crystal)
