@@ -7,25 +7,17 @@
 #include <fstream>
 #include <numeric>
 
-#include "plumage/builtin_plugins.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/geometry.hpp"
 #include "plumage/species_config.hpp"
+#include "test_registry.hpp"
 
 using namespace plumage;
 namespace fs = std::filesystem;
 
 namespace {
 
-const PluginRegistry& builtin_registry() {
-  static PluginRegistry r = [] {
-    PluginRegistry reg;
-    register_builtin_plugins(reg);
-    reg.load_directory(PLUMAGE_TEST_PLUGIN_DIR);  // configs may name a reflection model
-    return reg;
-  }();
-  return r;
-}
+const PluginRegistry& builtin_registry() { return plumage::testing::registry(); }
 
 fs::path write_temp(const std::string& name, const std::string& text) {
   fs::path dir = fs::temp_directory_path() / "plumage-test-geometry";

@@ -11,24 +11,16 @@
 #include <sstream>
 #include <thread>
 
-#include "plumage/builtin_plugins.hpp"
 #include "plumage/cross_section_io.hpp"
 #include "plumage/species_config.hpp"
+#include "test_registry.hpp"
 
 using namespace plumage;
 namespace fs = std::filesystem;
 
 namespace {
 
-const PluginRegistry& registry() {
-  static PluginRegistry r = [] {
-    PluginRegistry reg;
-    register_builtin_plugins(reg);
-    reg.load_directory(PLUMAGE_TEST_PLUGIN_DIR);
-    return reg;
-  }();
-  return r;
-}
+using plumage::testing::registry;
 
 const std::vector<std::string> kSpecies{"rockdove", "starling", "bronzewing", "hummingbird",
                                         "mallard",  "magpie",   "peacock"};

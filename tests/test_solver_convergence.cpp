@@ -5,22 +5,14 @@
 
 #include <filesystem>
 
-#include "plumage/builtin_plugins.hpp"
 #include "plumage/geometry.hpp"
 #include "plumage/species_config.hpp"
+#include "test_registry.hpp"
 
 using namespace plumage;
 
 namespace {
-const PluginRegistry& registry() {
-  static PluginRegistry r = [] {
-    PluginRegistry reg;
-    register_builtin_plugins(reg);
-    reg.load_directory(PLUMAGE_TEST_PLUGIN_DIR);
-    return reg;
-  }();
-  return r;
-}
+using plumage::testing::registry;
 }  // namespace
 
 TEST_CASE("node spacing 30 nm against 10 nm on layered barbules", "[.][convergence]") {

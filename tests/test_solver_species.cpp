@@ -5,23 +5,15 @@
 #include <algorithm>
 #include <filesystem>
 
-#include "plumage/builtin_plugins.hpp"
 #include "plumage/species_config.hpp"
+#include "test_registry.hpp"
 
 using namespace plumage;
 namespace fs = std::filesystem;
 
 namespace {
 
-const PluginRegistry& registry() {
-  static PluginRegistry r = [] {
-    PluginRegistry reg;
-    register_builtin_plugins(reg);
-    reg.load_directory(PLUMAGE_TEST_PLUGIN_DIR);
-    return reg;
-  }();
-  return r;
-}
+using plumage::testing::registry;
 
 std::vector<SpeciesConfig> layered_species() {
   std::vector<SpeciesConfig> out;

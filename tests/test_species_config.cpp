@@ -3,23 +3,15 @@
 
 #include <fstream>
 
-#include "plumage/builtin_plugins.hpp"
 #include "plumage/species_config.hpp"
+#include "test_registry.hpp"
 
 using namespace plumage;
 namespace fs = std::filesystem;
 
 namespace {
 
-const PluginRegistry& registry() {
-  static PluginRegistry r = [] {
-    PluginRegistry reg;
-    register_builtin_plugins(reg);
-    reg.load_directory(PLUMAGE_TEST_PLUGIN_DIR);
-    return reg;
-  }();
-  return r;
-}
+using plumage::testing::registry;
 
 fs::path write_temp(const std::string& name, const std::string& text) {
   fs::path dir = fs::temp_directory_path() / "plumage-test-species";

@@ -9,24 +9,16 @@
 #include <map>
 #include <numeric>
 
-#include "plumage/builtin_plugins.hpp"
 #include "plumage/geometry.hpp"
 #include "plumage/species_config.hpp"
+#include "test_registry.hpp"
 
 using namespace plumage;
 namespace fs = std::filesystem;
 
 namespace {
 
-const PluginRegistry& registry() {
-  static PluginRegistry r = [] {
-    PluginRegistry reg;
-    register_builtin_plugins(reg);  // species configs also name core's solver
-    reg.load_directory(PLUMAGE_TEST_PLUGIN_DIR);
-    return reg;
-  }();
-  return r;
-}
+using plumage::testing::registry;
 
 SpeciesConfig species(const std::string& name, const std::string& variant = "") {
   return load_species_config(fs::path(PLUMAGE_SOURCE_DIR) / "configs" / "species" / (name + ".yaml"),
