@@ -40,6 +40,20 @@ CVec3 cross3(const Vec3& a, const CVec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 
+// 𝓔 = (k0/4)·sqrt(2/(iπγ0))·[ô × S_M − (I − ôô)·S_J]  (spec §4.1, paper Eq. 7), from the
+// radiation integrals S_J = ∫ J̃ g and S_M = ∫ M g along the top.
+CVec3 far_field_vector(Complex prefactor, const Vec3& o, const CVec3& sj, const CVec3& sm) {
+  const Complex o_dot_j = o[0] * sj[0] + o[1] * sj[1] + o[2] * sj[2];
+  const CVec3 o_cross_m = cross3(o, sm);
+  CVec3 e;
+  for (int c = 0; c < 3; ++c) e[c] = prefactor * (o_cross_m[c] - sj[c] + o[c] * o_dot_j);
+  return e;
+}
+
+Complex far_field_prefactor(double k0, double gamma0) {
+  return (k0 / 4.0) * std::sqrt(2.0 / (kPi * gamma0)) * std::polar(1.0, -kPi / 4);
+}
+
 // Directions per kernel block: the block (nodes × 64 complex ≈ 1.4 MB for 1350 nodes) stays in
 // cache while the GEMM reads it.
 constexpr std::size_t kDirectionBlock = 64;
@@ -239,7 +253,7 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
                            "phase range (|2·k0·ρ| > 1e5)");
     }
   }
-  const Complex prefactor = (k0 / 4.0) * std::sqrt(2.0 / (kPi * gamma0)) * std::polar(1.0, -kPi / 4);
+  const Complex prefactor = far_field_prefactor(k0, gamma0);
   Eigen::MatrixXcd amplitudes(static_cast<Eigen::Index>(nodes), 12);
   Eigen::MatrixXcd kernel_t, transforms;
   KernelBuilder kernel(top);
@@ -268,15 +282,10 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
         const Vec3 o{ct * std::sin(phi_o_rad[j]), -st, ct * std::cos(phi_o_rad[j])};
         const auto row = static_cast<Eigen::Index>(jb);
         for (int p = 0; p < 2; ++p) {
-          // 𝓔 = (k0/4)·sqrt(2/(iπγ0))·[ô × S_M − (I − ôô)·S_J]  (spec §4.1, paper Eq. 7).
           const Eigen::Index col = 6 * p;
           const CVec3 sj{transforms(row, col), transforms(row, col + 1), transforms(row, col + 2)};
           const CVec3 sm{transforms(row, col + 3), transforms(row, col + 4), transforms(row, col + 5)};
-          const Complex o_dot_j = o[0] * sj[0] + o[1] * sj[1] + o[2] * sj[2];
-          const CVec3 o_cross_m = cross3(o, sm);
-          for (int c = 0; c < 3; ++c) {
-            ff.field[p][j][c] = prefactor * (o_cross_m[c] - sj[c] + o[c] * o_dot_j);
-          }
+          ff.field[p][j] = far_field_vector(prefactor, o, sj, sm);
         }
       }
     }
@@ -301,10 +310,9 @@ ApproximateSolver::NodeCurrents ApproximateSolver::currents(const Prepared& prep
   std::vector<JonesReflection> jones(nodes);
   top.reflection->reflect(requests, jones);
   Eigen::MatrixXcd amplitudes(static_cast<Eigen::Index>(nodes), 12);
-  std::array<double, 2> power{};
-  fill_amplitudes(top, incident, {ct * sp, std::sin(incident.theta_rad), ct * cp}, jones,
-                  currents_ == Currents::incident_and_reflected, amplitudes, power);
   NodeCurrents out;
+  fill_amplitudes(top, incident, {ct * sp, std::sin(incident.theta_rad), ct * cp}, jones,
+                  currents_ == Currents::incident_and_reflected, amplitudes, out.incident_power);
   for (std::size_t m = 0; m < nodes; ++m) {
     const Vec2 v = top.vertices[m + 1];
     out.position.push_back(v);
@@ -332,17 +340,8 @@ FarField ApproximateSolver::solve_direct_sum(const Prepared& prepared, double la
   ff.lambda_nm = lambda_nm;
   ff.incident = incident;
   ff.phi_o_rad.assign(phi_o_rad.begin(), phi_o_rad.end());
-  const double sp = std::sin(incident.phi_rad), cp = std::cos(incident.phi_rad);
-  // Φ_i as in solve().
-  for (std::size_t m = 0; m < top.normals.size(); ++m) {
-    const double cos_a = ct * (sp * top.normals[m].x + cp * top.normals[m].z);
-    if (cos_a > 0.0) {
-      const double flux = top.node_length[m] * top.window[m] * top.window[m] * cos_a / (2.0 * kEta0_ohm);
-      ff.incident_power[0] += flux;
-      ff.incident_power[1] += flux;
-    }
-  }
-  const Complex prefactor = (k0 / 4.0) * std::sqrt(2.0 / (kPi * gamma0)) * std::polar(1.0, -kPi / 4);
+  ff.incident_power = cur.incident_power;
+  const Complex prefactor = far_field_prefactor(k0, gamma0);
   for (int p = 0; p < 2; ++p) ff.field[p].resize(phi_o_rad.size());
   for (std::size_t j = 0; j < phi_o_rad.size(); ++j) {
     const Vec3 o{ct * std::sin(phi_o_rad[j]), -st, ct * std::cos(phi_o_rad[j])};
@@ -363,10 +362,8 @@ FarField ApproximateSolver::solve_direct_sum(const Prepared& prepared, double la
       }
     }
     for (int p = 0; p < 2; ++p) {
-      const CVec3 sj{sum[p][0], sum[p][1], sum[p][2]}, sm{sum[p][3], sum[p][4], sum[p][5]};
-      const Complex o_dot_j = o[0] * sj[0] + o[1] * sj[1] + o[2] * sj[2];
-      const CVec3 o_cross_m = cross3(o, sm);
-      for (int k = 0; k < 3; ++k) ff.field[p][j][k] = prefactor * (o_cross_m[k] - sj[k] + o[k] * o_dot_j);
+      ff.field[p][j] = far_field_vector(prefactor, o, {sum[p][0], sum[p][1], sum[p][2]},
+                                        {sum[p][3], sum[p][4], sum[p][5]});
     }
   }
   return ff;

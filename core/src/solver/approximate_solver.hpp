@@ -33,6 +33,7 @@ class ApproximateSolver final : public ScatteringSolver {
   struct NodeCurrents {
     std::vector<Vec2> position;
     std::array<std::vector<std::array<Complex, 6>>, 2> current;
+    std::array<double, 2> incident_power{0.0, 0.0};  // Φ_i (Eq. 9)
   };
   NodeCurrents currents(const Prepared& prepared, double lambda_nm, const IncidentDirection& incident) const;
 
