@@ -188,6 +188,7 @@ void add_bench_command(CLI::App& app, AppContext& context) {
   auto* bench = app.add_subcommand("bench", "Measure the speed of a backend");
   bench->require_subcommand(1);
   add_bench_geometry_command(*bench, context);
+  add_bench_fdtd_command(*bench, context);
 
   auto ml = std::make_shared<MultilayerBench>();
   auto* cmd = bench->add_subcommand("multilayer", "Multilayer reflection: time per (point, wavelength)");

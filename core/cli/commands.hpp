@@ -14,7 +14,9 @@ void add_spectra_command(CLI::App& app, AppContext& context);
 void add_bench_command(CLI::App& app, AppContext& context);
 void add_simulate_command(CLI::App& app, AppContext& context);
 void add_geometry_command(CLI::App& app, AppContext& context);
+void add_table_command(CLI::App& app, AppContext& context);  // cmd_table.cpp
 // `bench geometry` (bench_geometry.cpp), added under the `bench` subcommand.
 void add_bench_geometry_command(CLI::App& bench, AppContext& context);
+void add_bench_fdtd_command(CLI::App& bench, AppContext& context);  // bench_fdtd.cpp
 
 }  // namespace plumage::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   add_simulate_command(app, context);
   add_bench_command(app, context);
   add_geometry_command(app, context);
+  add_table_command(app, context);
 
   try {
     app.parse(argc, argv);

@@ -29,6 +29,10 @@ struct Options {
   double k_step_per_um = 0.5;  // Bloch k grid step; 0: one run per table entry (exact ε at λ)
   int threads = 2;
   fdtd::SimParams sim;       // nx is overwritten from `nx`
+  // k-grid mode: finished runs are appended to this file after every chunk, and a later build
+  // with the same key (tag, grid, nodes, resolution) skips them (resumable builds). Empty: off.
+  std::string checkpoint;
+  std::string checkpoint_tag;  // identifies the cell (e.g. its config hash)
 };
 
 // Engine cell for one crystal: lambda_um > 0 gives constant complex ε at that wavelength

@@ -2,7 +2,9 @@
 //
 // Provides:
 //   structure_generator "crystal_barbule"   procedural barbules of types 5–7 (crystal_barbule.cpp)
+//   local_reflection "photonic_crystal"     table-driven crystal reflection (crystal_table_reflection.cpp)
 #include "crystal_barbule.hpp"
+#include "crystal_table_reflection.hpp"
 #include "plumage/plugin_export.hpp"
 
 namespace {
@@ -19,6 +21,14 @@ void register_photonic_crystal(plumage::Registrar& registrar) {
        .params = CrystalBarbule::param_table()},
       [](const plumage::ParamView& params, const plumage::PluginContext& context) {
         return std::make_unique<CrystalBarbule>(params, context);
+      });
+  registrar.add<plumage::LocalReflection>(
+      {.kind = "", .type = "photonic_crystal", .version = "1.0.0",
+       .summary = "photonic-crystal reflection from a table (Jones s/p over lambda, cos theta, cos phi): "
+                  "cubic in the angles, mirror symmetry, exact grazing limit; built on demand and cached",
+       .params = plumage::photonic_crystal::CrystalTableReflection::param_table()},
+      [](const plumage::ParamView& params, const plumage::PluginContext& context) {
+        return std::make_unique<plumage::photonic_crystal::CrystalTableReflection>(params, context);
       });
 }
 

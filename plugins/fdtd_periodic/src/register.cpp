@@ -1,0 +1,98 @@
+// Entry point of libplumage_fdtd_periodic.so.
+//
+// Provides:
+//   table_builder "fdtd_periodic"   photonic-crystal reflection tables from the periodic 2.5D FDTD
+#include <cmath>
+#include <sstream>
+#include <string_view>
+
+#include "plumage/error.hpp"
+#include "plumage/plugin_export.hpp"
+#include "table_build.hpp"
+
+namespace {
+
+using namespace plumage;
+
+class FdtdTableBuilder final : public TableBuilder {
+ public:
+  FdtdTableBuilder(const ParamView& params, const PluginContext&) {
+    static constexpr std::string_view kFidelity[] = {"preview", "production"};
+    fidelity_ = params.choice_or("fidelity", kFidelity, "production");
+    const bool preview = fidelity_ == "preview";
+    resolution_nm_ = params.number_or("resolution_nm", preview ? 15.0 : 10.0, Limits::positive());
+    options_.k_step_per_um = params.number_or("k_step_per_um", preview ? 1.0 : 0.5, Limits::non_negative());
+    options_.threads = static_cast<int>(params.integer_or("threads", 2, Limits::closed(1, 64)));
+    options_.sim.pml_cells = static_cast<int>(params.integer_or("pml_cells", 24, Limits::closed(4, 200)));
+    options_.sim.kz_min = params.number_or("kz_min", 0.25, Limits::closed(0.01, 0.9));
+    options_.sim.dft_tol = params.number_or("dft_tol", 3e-4, Limits::positive());
+    options_.sim.courant = params.number_or("courant", 0.95, Limits::closed(0.05, 1.0));
+    options_.sim.smoothing = params.boolean_or("smoothing", true);
+    options_.sim.substrate_below = params.number_or("substrate_below_um", 0.30, Limits::positive());
+    options_.sim.air_above = params.number_or("air_above_um", 0.30, Limits::positive());
+    options_.checkpoint = params.text_or("checkpoint", "");
+  }
+
+  static std::vector<ParamSpec> param_table() {
+    return {
+        {"fidelity", "text", "-", "production",
+         "preview (15 nm grid, k step 1/um) or production (10 nm, 0.5/um)"},
+        {"resolution_nm", "number", "nm", "by fidelity", "target grid step; cells per period = round(a_x/step)"},
+        {"k_step_per_um", "number", "1/um", "by fidelity",
+         "Bloch-k grid step of the broadband runs; 0 = one run per table entry with exact eps(lambda)"},
+        {"threads", "integer", "1", "2", "worker threads (independent runs)"},
+        {"pml_cells", "integer", "1", "24", "CPML thickness above and below"},
+        {"kz_min", "number", "1", "0.25",
+         "entries with cos(theta)cos(phi) below this are blended into the analytic grazing limit"},
+        {"dft_tol", "number", "1", "3e-4", "stop when the reflected DFTs change by less than this"},
+        {"courant", "number", "1", "0.95", "time step as a fraction of the Courant limit"},
+        {"smoothing", "bool", "-", "true", "subpixel smoothing of material interfaces"},
+        {"substrate_below_um", "number", "um", "0.30", "keratin between the last row and the bottom PML"},
+        {"air_above_um", "number", "um", "0.30", "air between the surface and the top PML"},
+        {"checkpoint", "text", "-", "none", "file of finished runs: a rerun with the same cell and grid resumes from it"},
+    };
+  }
+
+  ReflectionTable build(const CrystalCell& cell, const TableGrid& grid, Progress progress) const override {
+    fdtd_table::Options o = options_;
+    o.nx = std::max(4, static_cast<int>(std::lround(cell.a_x_nm / resolution_nm_)));
+    TableMetadata meta;
+    meta.crystal = cell.name;
+    meta.period_nm = cell.a_x_nm;
+    meta.producer = "plumage fdtd_periodic 1.0.0 fidelity=" + fidelity_ +
+                    " nx=" + std::to_string(o.nx) + " k_step=" + std::to_string(o.k_step_per_um);
+    std::ostringstream tag;
+    tag.precision(17);
+    tag << cell.name << ";" << static_cast<int>(cell.lattice) << ";" << cell.a_x_nm << ";" << cell.a_z_nm << ";"
+        << cell.rod_diameter_nm << ";" << cell.core_diameter_nm << ";" << cell.channel_diameter_nm << ";"
+        << cell.rows << ";" << cell.cortex_nm << ";" << cell.host.name() << ";" << cell.rod.name() << ";"
+        << cell.core.name() << ";" << cell.channel.name() << ";" << o.sim.smoothing << ";" << o.sim.courant << ";"
+        << o.sim.air_above << ";" << o.sim.substrate_below;
+    o.checkpoint_tag = tag.str();
+    return fdtd_table::build_table(
+        [&cell](double lambda_um) { return fdtd_table::cell_from_crystal(cell, lambda_um); },
+        cell.a_x_nm * 1e-3, grid, meta, o, progress);
+  }
+
+ private:
+  std::string fidelity_;
+  double resolution_nm_ = 10.0;
+  fdtd_table::Options options_;
+};
+
+void register_fdtd_periodic(Registrar& registrar) {
+  registrar.add<TableBuilder>(
+      {.kind = "",
+       .type = "fdtd_periodic",
+       .version = "1.0.0",
+       .summary = "photonic-crystal reflection tables from a periodic 2.5D FDTD (Bloch k, CPML, "
+                  "subpixel smoothing, dispersive melanin/keratin), Jones (s, p) per (lambda, theta, phi)",
+       .params = FdtdTableBuilder::param_table()},
+      [](const ParamView& params, const PluginContext& context) {
+        return std::make_unique<FdtdTableBuilder>(params, context);
+      });
+}
+
+}  // namespace
+
+PLUMAGE_PLUGIN(register_fdtd_periodic)

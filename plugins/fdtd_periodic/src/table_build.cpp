@@ -1,0 +1,372 @@
+#include "table_build.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "plumage/config_document.hpp"
+#include "plumage/error.hpp"
+
+namespace plumage::fdtd_table {
+
+namespace {
+
+using fdtd::cplx;
+using fdtd::Vec3c;
+
+fdtd::MaterialModel model_of(const Material& m, double lambda_um) {
+  if (lambda_um > 0.0) {
+    if (m.kind() == Material::Kind::air) return fdtd::air_model();
+    const Complex n = m.index(lambda_um * 1000.0);
+    return fdtd::constant_model(m.name(), n * n, lambda_um);
+  }
+  switch (m.kind()) {
+    case Material::Kind::air:
+      return fdtd::air_model();
+    case Material::Kind::keratin:
+      return fdtd::keratin_fit().model;
+    case Material::Kind::melanin:
+      return fdtd::melanin_fit().model;
+    case Material::Kind::constant: {
+      const Complex n = m.index(550.0);
+      if (n.imag() != 0.0)
+        throw Error("fdtd_periodic: an absorbing constant material (" + m.name() +
+                    ") needs the per-entry mode (k_step_per_um: 0)");
+      fdtd::MaterialModel mm;
+      mm.name = m.name();
+      mm.eps_inf = (n * n).real();
+      return mm;
+    }
+    case Material::Kind::mixture:
+      break;
+  }
+  throw Error("fdtd_periodic: material " + m.name() + " has no broadband model; use k_step_per_um: 0");
+}
+
+// Checkpoint records: u32 node, then per frequency u8 valid, u8 other_orders, 4 f64 angles,
+// 12 complex (E[2], H[2]) as f64 pairs.
+void write_record(std::ostream& os, std::uint32_t node, const fdtd::Spectrum& s) {
+  os.write(reinterpret_cast<const char*>(&node), 4);
+  for (const auto& f : s.freqs) {
+    const char flags[2] = {static_cast<char>(f.valid), static_cast<char>(f.other_orders)};
+    os.write(flags, 2);
+    const double a[4] = {f.sin_theta, f.cos_theta, f.sin_phi, f.cos_phi};
+    os.write(reinterpret_cast<const char*>(a), sizeof a);
+    for (int q = 0; q < 2; ++q) {
+      os.write(reinterpret_cast<const char*>(f.E[q].data()), sizeof(Vec3c));
+      os.write(reinterpret_cast<const char*>(f.H[q].data()), sizeof(Vec3c));
+    }
+  }
+}
+
+bool read_record(std::istream& is, std::size_t nfreq, std::uint32_t& node, fdtd::Spectrum& s) {
+  if (!is.read(reinterpret_cast<char*>(&node), 4)) return false;
+  s.freqs.assign(nfreq, {});
+  for (auto& f : s.freqs) {
+    char flags[2];
+    double a[4];
+    if (!is.read(flags, 2) || !is.read(reinterpret_cast<char*>(a), sizeof a)) return false;
+    f.valid = flags[0] != 0;
+    f.other_orders = flags[1] != 0;
+    f.sin_theta = a[0], f.cos_theta = a[1], f.sin_phi = a[2], f.cos_phi = a[3];
+    for (int q = 0; q < 2; ++q) {
+      if (!is.read(reinterpret_cast<char*>(f.E[q].data()), sizeof(Vec3c))) return false;
+      if (!is.read(reinterpret_cast<char*>(f.H[q].data()), sizeof(Vec3c))) return false;
+    }
+  }
+  return true;
+}
+
+Complex dot(const Vec3c& a, const double s[3]) { return a[0] * s[0] + a[1] * s[1] + a[2] * s[2]; }
+
+}  // namespace
+
+fdtd::Cell cell_from_crystal(const CrystalCell& c, double lambda_um) {
+  fdtd::Cell cell;
+  cell.ax = c.a_x_nm * 1e-3;
+  cell.materials = {fdtd::air_model(), model_of(c.host, lambda_um), model_of(c.rod, lambda_um),
+                    model_of(c.core, lambda_um), model_of(c.channel, lambda_um)};
+  cell.ambient = 0;
+  cell.substrate = 1;
+  double deepest = 0.0;
+  for (int j = 0; j < c.rows; ++j) {
+    const double zj = c.rod_depth_nm(j) * 1e-3;
+    const double xj = c.shifted(j) ? 0.5 * cell.ax : 0.0;
+    cell.circles.push_back({xj, zj, 0.5e-3 * c.rod_diameter_nm, 2});
+    if (c.core_diameter_nm > 0) cell.circles.push_back({xj, zj, 0.5e-3 * c.core_diameter_nm, 3});
+    deepest = std::max(deepest, zj + 0.5e-3 * c.rod_diameter_nm);
+    if (c.channel_diameter_nm > 0) {
+      const double zc = zj + 0.5e-3 * c.a_z_nm;
+      cell.circles.push_back({0.5 * cell.ax, zc, 0.5e-3 * c.channel_diameter_nm, 4});
+      deepest = std::max(deepest, zc + 0.5e-3 * c.channel_diameter_nm);
+    }
+  }
+  cell.structure_depth = deepest;
+  return cell;
+}
+
+std::pair<double, double> engine_k(double lambda_nm, double theta, double phi) {
+  const double k0 = 2.0 * fdtd::kPi / (lambda_nm * 1e-3);
+  return {-k0 * std::cos(theta) * std::sin(phi), k0 * std::sin(theta)};
+}
+
+JonesReflection jones_from_engine(const fdtd::FreqResult& f) {
+  const double st = f.sin_theta, ct = f.cos_theta, sp = f.sin_phi, cp = f.cos_phi;
+  const double w[3] = {ct * sp, st, -ct * cp};  // ω_i, engine frame
+  // ŝ = ω_i × n̂ with n̂ = (0, 0, −1): (−w_y, w_x, 0)
+  double s[3] = {-w[1], w[0], 0.0};
+  const double len = std::hypot(s[0], s[1]);
+  if (len < 1e-4) {
+    s[0] = 0.0, s[1] = -1.0;  // R ŷ
+  } else {
+    s[0] /= len, s[1] /= len;
+  }
+  Vec3c eb[2], hb[2];
+  fdtd::incident_basis(st, ct, sp, cp, eb, hb);
+  Complex B[2][2], C[2][2];
+  for (int q = 0; q < 2; ++q) {
+    B[0][q] = dot(eb[q], s);
+    B[1][q] = dot(hb[q], s);
+    C[0][q] = dot(f.E[q], s);
+    C[1][q] = dot(f.H[q], s);
+  }
+  const Complex det = B[0][0] * B[1][1] - B[0][1] * B[1][0];
+  const Complex Bi[2][2] = {{B[1][1] / det, -B[0][1] / det}, {-B[1][0] / det, B[0][0] / det}};
+  Complex J[2][2];
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) J[a][b] = C[a][0] * Bi[0][b] + C[a][1] * Bi[1][b];
+  return {J[0][0], J[0][1], J[1][0], J[1][1]};
+}
+
+ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const TableGrid& grid,
+                            TableMetadata meta, const Options& opt,
+                            const TableBuilder::Progress& progress) {
+  if (opt.nx < 1) throw Error("fdtd_periodic: nx must be >= 1");
+  fdtd::SimParams sim = opt.sim;
+  sim.nx = opt.nx;
+  const double kz_min = sim.kz_min;
+  meta.resolution_nm = 1000.0 * ax_um / opt.nx;
+  ReflectionTable table(grid, meta);
+  const std::size_t NL = grid.lambda_nm.size(), NT = grid.cos_theta.size(), NP = grid.cos_phi.size();
+  std::vector<char> valid(NL * NT * NP, 0);
+  auto idx = [&](std::size_t l, std::size_t i, std::size_t j) { return (l * NT + i) * NP + j; };
+  auto simulated = [&](std::size_t i, std::size_t j) {
+    return grid.cos_theta[i] * grid.cos_phi[j] >= kz_min;
+  };
+  std::size_t other_orders = 0, runs_total = 0, resumed_runs = 0;
+  auto note_orders = [&](const fdtd::FreqResult& f) {
+    if (f.other_orders) ++other_orders;
+  };
+  auto angles = [&](std::size_t i, std::size_t j) {
+    return std::pair<double, double>{std::acos(std::min(1.0, grid.cos_theta[i])),
+                                     std::acos(std::min(1.0, grid.cos_phi[j]))};
+  };
+
+  if (opt.k_step_per_um <= 0.0) {
+    // One run per entry, constant ε exact at each λ.
+    std::vector<std::pair<std::size_t, std::size_t>> angle_list;
+    for (std::size_t i = 0; i < NT; ++i)
+      for (std::size_t j = 0; j < NP; ++j)
+        if (simulated(i, j)) angle_list.push_back({i, j});
+    const std::size_t total = NL * angle_list.size();
+    std::size_t done = 0;
+    for (std::size_t l = 0; l < NL; ++l) {
+      const double lam_um = grid.lambda_nm[l] * 1e-3;
+      const fdtd::Cell cell = make_cell(lam_um);
+      std::vector<fdtd::Job> jobs;
+      for (auto [i, j] : angle_list) {
+        const auto [t, p] = angles(i, j);
+        const auto [kx, ky] = engine_k(grid.lambda_nm[l], t, p);
+        jobs.push_back({kx, ky});
+      }
+      const std::vector<double> omegas{2.0 * fdtd::kPi / lam_um};
+      const std::size_t chunk = static_cast<std::size_t>(std::max(1, opt.threads)) * 2;
+      for (std::size_t a = 0; a < jobs.size(); a += chunk) {
+        const std::vector<fdtd::Job> part(jobs.begin() + a, jobs.begin() + std::min(jobs.size(), a + chunk));
+        const auto spectra = fdtd::run_batch(cell, part, omegas, sim, opt.threads);
+        for (std::size_t b = 0; b < part.size(); ++b) {
+          const auto [i, j] = angle_list[a + b];
+          const fdtd::FreqResult& f = spectra[b].freqs.at(0);
+          if (!f.valid) continue;
+          note_orders(f);
+          table.at(l, i, j) = jones_from_engine(f);
+          valid[idx(l, i, j)] = 1;
+        }
+        done += part.size();
+        runs_total += part.size();
+        if (progress) progress(done, total, "fdtd runs (one per entry)");
+      }
+    }
+  } else {
+    // Broadband runs on a Bloch-k grid k_x = −a Δk, k_y = b Δk (a, b ≥ 0), bilinear in (k_x, k_y)
+    // at each table frequency. Each node gives Jones matrices at its own angles.
+    const double dk = opt.k_step_per_um;
+    std::map<std::pair<int, int>, std::size_t> nodes;
+    struct Corner {
+      std::size_t node[4];
+      double w[4];
+    };
+    std::vector<Corner> corners(NL * NT * NP);
+    for (std::size_t l = 0; l < NL; ++l)
+      for (std::size_t i = 0; i < NT; ++i)
+        for (std::size_t j = 0; j < NP; ++j) {
+          if (!simulated(i, j)) continue;
+          const auto [t, p] = angles(i, j);
+          const auto [kx, ky] = engine_k(grid.lambda_nm[l], t, p);
+          const double u = std::max(0.0, -kx / dk), v = std::max(0.0, ky / dk);
+          const int a0 = static_cast<int>(std::floor(u)), b0 = static_cast<int>(std::floor(v));
+          const double fu = u - a0, fv = v - b0;
+          Corner& c = corners[idx(l, i, j)];
+          int k = 0;
+          for (int da = 0; da < 2; ++da)
+            for (int db = 0; db < 2; ++db, ++k) {
+              auto key = std::make_pair(a0 + da, b0 + db);
+              auto it = nodes.emplace(key, nodes.size()).first;
+              c.node[k] = it->second;
+              c.w[k] = (da ? fu : 1.0 - fu) * (db ? fv : 1.0 - fv);
+            }
+        }
+    std::vector<fdtd::Job> jobs(nodes.size());
+    for (const auto& [key, n] : nodes) jobs[n] = {-key.first * dk, key.second * dk};
+    std::vector<double> omegas;
+    for (double lam : grid.lambda_nm) omegas.push_back(2.0 * fdtd::kPi / (lam * 1e-3));
+    const fdtd::Cell cell = make_cell(-1.0);
+    std::vector<fdtd::Spectrum> spectra(jobs.size());
+    std::vector<char> have(jobs.size(), 0);
+    std::size_t resumed = 0;
+    std::ofstream ck;
+    if (!opt.checkpoint.empty()) {
+      std::ostringstream key;
+      key.precision(17);
+      key << "plumage-fdtd-checkpoint-1;" << opt.checkpoint_tag << ";ax=" << ax_um << ";nx=" << opt.nx
+          << ";dk=" << dk << ";kzmin=" << kz_min << ";tol=" << sim.dft_tol << ";pml=" << sim.pml_cells
+          << ";w=";
+      for (double w : omegas) key << w << ",";
+      key << ";nodes=" << jobs.size() << ";";
+      for (const auto& jb : jobs) key << jb.kx << "," << jb.ky << ";";
+      const std::string header = fnv1a_hex(key.str());
+      {
+        std::ifstream in(opt.checkpoint, std::ios::binary);
+        std::string h(16, '\0');
+        if (in && in.read(h.data(), 16) && h == header) {
+          std::uint32_t node;
+          fdtd::Spectrum sp;
+          while (read_record(in, omegas.size(), node, sp)) {
+            if (node < jobs.size() && !have[node]) {
+              spectra[node] = std::move(sp);
+              have[node] = 1;
+              ++resumed;
+            }
+          }
+        }
+      }
+      // Rewrite the file with the records read (drops a truncated tail), then append.
+      ck.open(opt.checkpoint, std::ios::binary | std::ios::trunc);
+      if (!ck) throw Error("fdtd_periodic: cannot write checkpoint " + opt.checkpoint);
+      ck.write(header.data(), 16);
+      for (std::size_t n = 0; n < jobs.size(); ++n)
+        if (have[n]) write_record(ck, static_cast<std::uint32_t>(n), spectra[n]);
+      ck.flush();
+    }
+    std::vector<std::size_t> todo;
+    for (std::size_t n = 0; n < jobs.size(); ++n)
+      if (!have[n]) todo.push_back(n);
+    const std::size_t chunk = static_cast<std::size_t>(std::max(1, opt.threads)) * 2;
+    if (progress && resumed > 0) progress(resumed, jobs.size(), "fdtd broadband runs (Bloch k grid, resumed)");
+    for (std::size_t a = 0; a < todo.size(); a += chunk) {
+      std::vector<fdtd::Job> part;
+      for (std::size_t b = a; b < std::min(todo.size(), a + chunk); ++b) part.push_back(jobs[todo[b]]);
+      auto out = fdtd::run_batch(cell, part, omegas, sim, opt.threads);
+      for (std::size_t b = 0; b < out.size(); ++b) {
+        const std::size_t n = todo[a + b];
+        spectra[n] = std::move(out[b]);
+        if (ck.is_open()) write_record(ck, static_cast<std::uint32_t>(n), spectra[n]);
+      }
+      if (ck.is_open()) ck.flush();
+      runs_total += part.size();
+      if (progress) progress(resumed + a + part.size(), jobs.size(), "fdtd broadband runs (Bloch k grid)");
+    }
+    resumed_runs = resumed;
+    for (std::size_t l = 0; l < NL; ++l)
+      for (std::size_t i = 0; i < NT; ++i)
+        for (std::size_t j = 0; j < NP; ++j) {
+          if (!simulated(i, j)) continue;
+          const Corner& c = corners[idx(l, i, j)];
+          JonesReflection acc{};
+          double wsum = 0.0;
+          bool orders = false;
+          for (int k = 0; k < 4; ++k) {
+            if (c.w[k] == 0.0) continue;
+            const fdtd::FreqResult& f = spectra[c.node[k]].freqs.at(l);
+            if (!f.valid) continue;
+            orders = orders || f.other_orders;
+            const JonesReflection r = jones_from_engine(f);
+            acc.ss += c.w[k] * r.ss, acc.sp += c.w[k] * r.sp, acc.ps += c.w[k] * r.ps, acc.pp += c.w[k] * r.pp;
+            wsum += c.w[k];
+          }
+          if (wsum < 0.25) continue;  // too little support: treated as not simulated
+          if (orders) ++other_orders;
+          acc.ss /= wsum, acc.sp /= wsum, acc.ps /= wsum, acc.pp /= wsum;
+          table.at(l, i, j) = acc;
+          valid[idx(l, i, j)] = 1;
+        }
+  }
+
+  // Fill the entries that were not simulated: linear in cos φ toward the grazing limit at
+  // cos φ = 0 from the lowest valid entry of the row; whole rows without one, linear in cos θ.
+  const JonesReflection g = grazing_jones();
+  auto blend = [&](const JonesReflection& v, double f) {  // g + f (v − g)
+    return JonesReflection{g.ss + f * (v.ss - g.ss), g.sp + f * (v.sp - g.sp),
+                           g.ps + f * (v.ps - g.ps), g.pp + f * (v.pp - g.pp)};
+  };
+  std::size_t filled = 0;
+  for (std::size_t l = 0; l < NL; ++l) {
+    std::vector<char> row_ok(NT, 0);
+    for (std::size_t i = 0; i < NT; ++i) {
+      std::size_t jv = NP;
+      for (std::size_t j = 0; j < NP; ++j)
+        if (valid[idx(l, i, j)]) { jv = j; break; }
+      if (jv == NP) continue;
+      row_ok[i] = 1;
+      for (std::size_t j = 0; j < NP; ++j) {
+        if (valid[idx(l, i, j)]) continue;
+        ++filled;
+        if (j < jv) {
+          table.at(l, i, j) = blend(table.at(l, i, jv), grid.cos_phi[j] / grid.cos_phi[jv]);
+        } else {  // a gap above the first valid entry: nearest valid below
+          std::size_t k = j;
+          while (k > 0 && !valid[idx(l, i, k)]) --k;
+          table.at(l, i, j) = table.at(l, i, k);
+        }
+      }
+    }
+    std::size_t iv = NT;
+    for (std::size_t i = 0; i < NT; ++i)
+      if (row_ok[i]) { iv = i; break; }
+    for (std::size_t i = 0; i < NT; ++i) {
+      if (row_ok[i]) continue;
+      for (std::size_t j = 0; j < NP; ++j) {
+        ++filled;
+        table.at(l, i, j) = (iv == NT || i > iv) ? g
+                                                 : blend(table.at(l, iv, j), grid.cos_theta[i] / grid.cos_theta[iv]);
+      }
+    }
+  }
+  std::ostringstream notes;
+  notes << "fdtd runs: " << runs_total + resumed_runs;
+  if (resumed_runs > 0) notes << " (" << resumed_runs << " resumed from a checkpoint)";
+  notes << "; entries blended toward the grazing limit (k_z/k0 < "
+        << kz_min << "): " << filled << " of " << NL * NT * NP;
+  if (other_orders > 0)
+    notes << "; WARNING: " << other_orders
+          << " entries with other propagating diffraction orders (only the specular order is stored)";
+  table.metadata().notes = notes.str();
+  table.metadata().resolution_nm = meta.resolution_nm;
+  return table;
+}
+
+}  // namespace plumage::fdtd_table
