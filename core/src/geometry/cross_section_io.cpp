@@ -111,7 +111,16 @@ std::string colour(const Material& m) {
 
 }  // namespace
 
-void write_cross_section_svg(std::ostream& out, const CrossSection& cs, const SvgOptions& o) {
+namespace {
+
+// The drawn window of a picture, shared by the SVG and the PNG: x range (the whole section or
+// the requested window), z range of the outline inside it, and the panel layout.
+struct PictureFrame {
+  double x0, x1, zmin, zmax, margin, panel;
+  int panels;
+};
+
+PictureFrame picture_frame(const CrossSection& cs, const SvgOptions& o) {
   double x0 = cs.top.front().x, x1 = cs.top.back().x;
   for (const Vec2& p : cs.bottom) { x0 = std::min(x0, p.x); x1 = std::max(x1, p.x); }
   if (o.window_nm) { x0 = o.window_nm->first; x1 = o.window_nm->second; }
@@ -121,9 +130,16 @@ void write_cross_section_svg(std::ostream& out, const CrossSection& cs, const Sv
     zmax = std::max(zmax, p.z);
     zmin = std::min(zmin, p.z);
   }
-  const double margin = 0.05 * (zmax - zmin) + 100.0;
-  const double panel = zmax - zmin + 2.0 * margin;
+  const double margin_nm = 0.05 * (zmax - zmin) + 100.0;
+  const double panel = zmax - zmin + 2.0 * margin_nm;
   const int panels = (o.exact ? 1 : 0) + (o.reduced ? 1 : 0);
+  return {x0, x1, zmin, zmax, margin_nm, panel, panels};
+}
+
+}  // namespace
+
+void write_cross_section_svg(std::ostream& out, const CrossSection& cs, const SvgOptions& o) {
+  const auto [x0, x1, zmin, zmax, margin, panel, panels] = picture_frame(cs, o);
   const double s = o.pixels_per_um / 1000.0;  // px per nm
   const double width_px = (x1 - x0) * s, height_px = panel * panels * s;
   out << std::fixed << std::setprecision(1);
@@ -235,18 +251,7 @@ Rgb8 rgb_of(const Material& m) {
 }  // namespace
 
 Image render_cross_section(const CrossSection& cs, const SvgOptions& o) {
-  double x0 = cs.top.front().x, x1 = cs.top.back().x;
-  for (const Vec2& p : cs.bottom) { x0 = std::min(x0, p.x); x1 = std::max(x1, p.x); }
-  if (o.window_nm) { x0 = o.window_nm->first; x1 = o.window_nm->second; }
-  double zmax = -1e300, zmin = 1e300;
-  for (const Vec2& p : cs.regions.empty() ? cs.top : cs.regions[0].outline) {
-    if (p.x < x0 || p.x > x1) continue;
-    zmax = std::max(zmax, p.z);
-    zmin = std::min(zmin, p.z);
-  }
-  const double margin = 0.05 * (zmax - zmin) + 100.0;
-  const double panel = zmax - zmin + 2.0 * margin;
-  const int panels = (o.exact ? 1 : 0) + (o.reduced ? 1 : 0);
+  const auto [x0, x1, zmin, zmax, margin, panel, panels] = picture_frame(cs, o);
   const double s = o.pixels_per_um / 1000.0;
   const int w = std::max(1, static_cast<int>(std::lround((x1 - x0) * s)));
   const int h = std::max(1, static_cast<int>(std::lround(panel * panels * s)));

@@ -18,26 +18,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+using plumage::testing::distance_to;
 using plumage::testing::registry;
-
-SpeciesConfig species(const std::string& name, const std::string& variant = "") {
-  return load_species_config(fs::path(PLUMAGE_SOURCE_DIR) / "configs" / "species" / (name + ".yaml"),
-                             registry(), variant);
-}
-
-// Distance from a point to a polyline monotone in x (segments near p.x only).
-double distance_to(const Polyline& line, Vec2 p, double reach = 1500.0) {
-  double best = 1e300;
-  auto first = std::lower_bound(line.begin(), line.end(), p.x - reach,
-                                [](const Vec2& v, double x) { return v.x < x; });
-  for (std::size_t i = static_cast<std::size_t>(std::max<std::ptrdiff_t>(0, first - line.begin() - 1));
-       i + 1 < line.size() && line[i].x <= p.x + reach; ++i) {
-    const Vec2 a = line[i], d = line[i + 1] - line[i];
-    const double t = std::clamp(dot(p - a, d) / dot(d, d), 0.0, 1.0);
-    best = std::min(best, norm(p - (a + t * d)));
-  }
-  return best;
-}
+using plumage::testing::species;
 
 struct Moments {
   double n = 0, sum = 0, sum2 = 0, lo = 1e300, hi = -1e300;
