@@ -1,0 +1,227 @@
+// Interfaces and segments of the BEM mesh (spec §6.3, §6.4, §6.6); see mesh.hpp.
+#include "mesh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <unordered_map>
+
+#include "plumage/error.hpp"
+
+namespace plumage::bem {
+
+namespace {
+
+using Key = std::pair<std::int64_t, std::int64_t>;
+// Vertices are identified by their position quantised to 1e-4 nm (generators share vertices
+// exactly; this only absorbs the last bits of independently computed copies).
+Key key_of(Vec2 p) { return {std::llround(p.x * 1e4), std::llround(p.z * 1e4)}; }
+
+struct KeyHash {
+  std::size_t operator()(const Key& k) const {
+    return std::hash<std::int64_t>()(k.first * 1000003 ^ k.second);
+  }
+};
+
+std::string region_label(const CrossSection& s, int r) {
+  if (r < 0) return "air";
+  const Region& reg = s.regions[r];
+  return "region " + std::to_string(r) + " (" + std::string(role_name(reg.role)) + ")";
+}
+
+}  // namespace
+
+Geometry build_geometry(const CrossSection& section) {
+  const auto& regions = section.regions;
+  const int nr = static_cast<int>(regions.size());
+  if (nr == 0) throw Error("bem: cross section '" + section.label + "' has no regions");
+  std::vector<int> depth(nr, 0);
+  for (int r = 0; r < nr; ++r) {
+    const int p = regions[r].parent;
+    if (p >= r) throw Error("bem: " + region_label(section, r) + " has parent " + std::to_string(p) +
+                            ", which does not precede it");
+    depth[r] = p < 0 ? 0 : depth[p] + 1;
+    if (regions[r].outline.size() < 3) throw Error("bem: " + region_label(section, r) + " has fewer than 3 vertices");
+  }
+
+  // All vertices, bucketed on a grid, to split edges at vertices of other outlines that lie on
+  // them (a child whose side runs along part of its parent's side, as in layered slabs).
+  double total = 0.0;
+  std::size_t count = 0;
+  std::vector<Vec2> all;
+  for (const Region& reg : regions) {
+    for (std::size_t k = 0; k < reg.outline.size(); ++k) {
+      all.push_back(reg.outline[k]);
+      total += norm(reg.outline[(k + 1) % reg.outline.size()] - reg.outline[k]);
+      ++count;
+    }
+  }
+  const double cell = std::max(1e-3, 2.0 * total / count);
+  std::unordered_map<Key, std::vector<int>, KeyHash> grid;
+  auto cell_of = [&](double x, double z) {
+    return Key{static_cast<std::int64_t>(std::floor(x / cell)), static_cast<std::int64_t>(std::floor(z / cell))};
+  };
+  for (int i = 0; i < static_cast<int>(all.size()); ++i) grid[cell_of(all[i].x, all[i].z)].push_back(i);
+
+  // Owners of each elementary edge: (region, +1 if the region's outline runs from the smaller
+  // to the larger key (region on the left of that direction), −1 otherwise).
+  struct Owned {
+    Vec2 p, q;  // p has the smaller key
+    std::vector<std::pair<int, int>> owners;
+  };
+  std::map<std::pair<Key, Key>, Owned> edges;
+  for (int r = 0; r < nr; ++r) {
+    const Polygon& poly = regions[r].outline;
+    if (signed_area(poly) <= 0.0) throw Error("bem: " + region_label(section, r) + " is not counter-clockwise");
+    for (std::size_t k = 0; k < poly.size(); ++k) {
+      const Vec2 p = poly[k], q = poly[(k + 1) % poly.size()];
+      const Vec2 d = q - p;
+      const double len = norm(d);
+      if (len <= 0.0) continue;
+      // vertices strictly inside the edge
+      std::vector<std::pair<double, Vec2>> cuts{{0.0, p}, {1.0, q}};
+      const Key c0 = cell_of(std::min(p.x, q.x), std::min(p.z, q.z));
+      const Key c1 = cell_of(std::max(p.x, q.x), std::max(p.z, q.z));
+      const double tol = 1e-6 + 1e-9 * len;
+      for (auto i = c0.first; i <= c1.first; ++i) {
+        for (auto j = c0.second; j <= c1.second; ++j) {
+          auto it = grid.find({i, j});
+          if (it == grid.end()) continue;
+          for (int vi : it->second) {
+            const Vec2 v = all[vi];
+            const double s = dot(v - p, d) / (len * len);
+            if (s * len <= tol || (1.0 - s) * len <= tol) continue;
+            if (std::abs(cross(d, v - p)) / len > tol) continue;
+            cuts.push_back({s, v});
+          }
+        }
+      }
+      std::sort(cuts.begin(), cuts.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+        Vec2 a = cuts[c].second, b = cuts[c + 1].second;
+        Key ka = key_of(a), kb = key_of(b);
+        if (ka == kb) continue;
+        int dir = +1;
+        if (kb < ka) std::swap(ka, kb), std::swap(a, b), dir = -1;
+        Owned& e = edges[{ka, kb}];
+        if (e.owners.empty()) e.p = a, e.q = b;
+        e.owners.push_back({r, dir});
+      }
+    }
+  }
+
+  Geometry g;
+  g.domain_material.push_back(Material::air());
+  g.domain_name.push_back("air");
+  for (int r = 0; r < nr; ++r) {
+    g.domain_material.push_back(regions[r].material);
+    g.domain_name.push_back(region_label(section, r));
+  }
+  auto deepest = [&](const std::vector<int>& rs) {
+    int best = rs.front();
+    for (int r : rs) {
+      if (depth[r] > depth[best]) best = r;
+    }
+    for (int r : rs) {
+      if (r != best && depth[r] == depth[best]) {
+        throw Error("bem: " + region_label(section, r) + " and " + region_label(section, best) +
+                    " overlap along an edge (same side of a shared boundary)");
+      }
+    }
+    return best;
+  };
+  auto shallowest_parent = [&](const std::vector<int>& rs) {
+    int best = rs.front();
+    for (int r : rs) {
+      if (depth[r] < depth[best]) best = r;
+    }
+    return regions[best].parent;
+  };
+  for (auto& [key, e] : edges) {
+    std::vector<int> left, right;
+    for (auto [r, dir] : e.owners) (dir > 0 ? left : right).push_back(r);
+    const int l = left.empty() ? shallowest_parent(right) : deepest(left);
+    const int rr = right.empty() ? shallowest_parent(left) : deepest(right);
+    if (l == rr) continue;  // a boundary inside one medium region (e.g. parent edge under a child)
+    const int dl = l + 1, dr = rr + 1;
+    // n̂ = ŷ × t̂ is the right-hand side of t̂ in the (x, z) view; it must point into a = min.
+    InterfaceEdge ie;
+    ie.a = std::min(dl, dr);
+    ie.b = std::max(dl, dr);
+    if (dr == ie.a) ie.p = e.p, ie.q = e.q;
+    else ie.p = e.q, ie.q = e.p;
+    g.edges.push_back(ie);
+  }
+  if (g.edges.empty()) throw Error("bem: cross section '" + section.label + "' has no interfaces");
+  return g;
+}
+
+Mesh build_mesh(const Geometry& geometry, double lambda_nm, double ppw) {
+  Mesh mesh;
+  mesh.a_count = static_cast<int>(geometry.domain_material.size());
+  std::vector<double> hmax(mesh.a_count);
+  for (int d = 0; d < mesh.a_count; ++d) {
+    hmax[d] = lambda_nm / (std::abs(geometry.domain_material[d].index(lambda_nm)) * ppw);
+  }
+  std::unordered_map<Key, int, KeyHash> vid;
+  auto vertex = [&](Vec2 p) {
+    auto [it, fresh] = vid.try_emplace(key_of(p), static_cast<int>(mesh.vertices.size()));
+    if (fresh) mesh.vertices.push_back(p);
+    return it->second;
+  };
+  for (const InterfaceEdge& e : geometry.edges) {
+    const double len = norm(e.q - e.p);
+    const int n = std::max(1, static_cast<int>(std::ceil(len / std::min(hmax[e.a], hmax[e.b]) - 1e-9)));
+    int prev = vertex(e.p);
+    for (int k = 1; k <= n; ++k) {
+      const Vec2 p = k == n ? e.q : e.p + (static_cast<double>(k) / n) * (e.q - e.p);
+      const int cur = vertex(p);
+      Segment s;
+      s.v0 = prev, s.v1 = cur, s.a = e.a, s.b = e.b;
+      s.p0 = mesh.vertices[prev], s.p1 = mesh.vertices[cur];
+      const Vec2 d = s.p1 - s.p0;
+      s.h = norm(d);
+      s.t = (1.0 / s.h) * d;
+      s.n = {s.t.z, -s.t.x};
+      mesh.segments.push_back(s);
+      prev = cur;
+    }
+  }
+  mesh.n_t = static_cast<int>(mesh.vertices.size());
+  // z-coefficients: shared by the two segments of one interface through a regular vertex,
+  // separate half tents at junctions (§6.6).
+  std::vector<std::vector<std::pair<int, int>>> incident(mesh.n_t);  // (segment, end)
+  for (int s = 0; s < static_cast<int>(mesh.segments.size()); ++s) {
+    incident[mesh.segments[s].v0].push_back({s, 0});
+    incident[mesh.segments[s].v1].push_back({s, 1});
+  }
+  int nz = 0;
+  for (int v = 0; v < mesh.n_t; ++v) {
+    const auto& inc = incident[v];
+    if (inc.size() < 2) {
+      throw Error("bem: an interface between " + geometry.domain_name[mesh.segments[inc[0].first].a] + " and " +
+                  geometry.domain_name[mesh.segments[inc[0].first].b] + " ends at (" +
+                  std::to_string(mesh.vertices[v].x) + ", " + std::to_string(mesh.vertices[v].z) +
+                  ") nm without closing");
+    }
+    const Segment& s0 = mesh.segments[inc[0].first];
+    const Segment& s1 = mesh.segments[inc[1].first];
+    if (inc.size() == 2 && s0.a == s1.a && s0.b == s1.b && inc[0].second != inc[1].second) {
+      mesh.segments[inc[0].first].zdof[inc[0].second] = nz;
+      mesh.segments[inc[1].first].zdof[inc[1].second] = nz;
+      ++nz;
+    } else {
+      for (auto [s, end] : inc) mesh.segments[s].zdof[end] = nz++;
+    }
+  }
+  mesh.n_z = nz;
+  mesh.domain_segments.assign(mesh.a_count, {});
+  for (int s = 0; s < static_cast<int>(mesh.segments.size()); ++s) {
+    mesh.domain_segments[mesh.segments[s].a].push_back(s);
+    mesh.domain_segments[mesh.segments[s].b].push_back(s);
+  }
+  return mesh;
+}
+
+}  // namespace plumage::bem
