@@ -2,6 +2,7 @@
 // (λ, ω_i) → a FarFieldSet file, plus optional Eq. 10 CSV and a Fig. 7-style picture.
 #include <tbb/parallel_for.h>
 
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -33,12 +34,62 @@ struct Options {
   std::string out;
   std::string pattern;
   std::string csv;
+  std::string directions = "pattern";  // pattern (pattern + projected sets) | full
 };
+
+// Full-circle far fields (`--directions full`, validation bodies): 1° steps over (−180°, 180°].
+constexpr int kFullCircleSamples = 360;
 
 // Azimuth offset of instance n of N: spread linearly over ±jitter (spec §1.1).
 double jitter_rad(int n, int count, double jitter_deg) {
   if (count < 2 || jitter_deg == 0.0) return 0.0;
   return deg_to_rad(-jitter_deg + 2.0 * jitter_deg * n / (count - 1));
+}
+
+// `--directions full`: the instance mean of the 2D differential scattering width.
+//   dσ/dφ_o = cos θ_i |𝓔(φ_o)|²   (nm per radian)
+// is the scattered power per unit barbule length and per radian of φ_o divided by the incident
+// irradiance |E_i|²/(2η0) of the unit-amplitude plane wave (far_field.hpp: cos θ_i |𝓔|²/(2η0)
+// is the power per unit length per radian); it integrates over the full circle to the scattering
+// width C_sca (B&H; tests/oracles/cylinder_series.hpp). σ_2D = 2π dσ/dφ_o is the "echo width"
+// convention, lim 2πρ |E_s|²/|E_i|² at θ_i = 0.
+void write_full_circle_csv(const FarFieldSet& set, const std::string& file) {
+  std::ostringstream out;
+  out << std::setprecision(9)
+      << "# 2D differential scattering width over the full circle of outgoing azimuths (1 deg steps),\n"
+      << "# instance mean, for a unit-amplitude (1 V/m) incident plane wave:\n"
+      << "#   dsigma_dphi_nm = cos(theta_i) |E_far(phi_o)|^2  [nm per radian of phi_o]: scattered power per unit\n"
+      << "#     barbule length and per radian divided by the incident irradiance |E_i|^2/(2 eta0); its integral\n"
+      << "#     over phi_o is the total scattering width C_sca [nm];\n"
+      << "#   sigma_2d_nm = 2 pi dsigma_dphi_nm [nm] (= lim 2 pi rho |E_s|^2/|E_i|^2 at theta_i = 0, 'echo width').\n"
+      << "# E_far: far-field amplitude, E ~ exp(i gamma0 rho) rho^(-1/2) E_far (far_field.hpp), V/m*sqrt(nm).\n"
+      << "# Only meaningful for plane-wave incidence (bem: incidence: plane_wave); a solver that\n"
+      << "# illuminates with a beam gives E_far for a beam of unit peak amplitude instead.\n"
+      << "# phi_o from +z (the macro normal) toward +x; pol: 1, 2, or mean = (pol1 + pol2)/2.\n"
+      << "lambda_nm,theta_i_deg,phi_i_deg,pol,phi_o_deg,dsigma_dphi_nm,sigma_2d_nm\n";
+  for (const auto& u : set.units) {
+    const auto& phi = u.instances.front().phi_o_rad;
+    const double ct = std::cos(u.nominal.theta_rad);
+    std::array<std::vector<double>, 2> width{std::vector<double>(phi.size(), 0.0), std::vector<double>(phi.size(), 0.0)};
+    for (const auto& ff : u.instances) {
+      for (int p = 0; p < 2; ++p) {
+        for (std::size_t j = 0; j < phi.size(); ++j) {
+          const auto& f = ff.field[p][j];
+          width[p][j] += ct * (std::norm(f[0]) + std::norm(f[1]) + std::norm(f[2])) /
+                         static_cast<double>(u.instances.size());
+        }
+      }
+    }
+    for (int p = 0; p < 3; ++p) {
+      for (std::size_t j = 0; j < phi.size(); ++j) {
+        const double v = p < 2 ? width[p][j] : 0.5 * (width[0][j] + width[1][j]);
+        out << u.lambda_nm << ',' << rad_to_deg(u.nominal.theta_rad) << ',' << rad_to_deg(u.nominal.phi_rad)
+            << ',' << (p == 2 ? "mean" : std::to_string(p + 1)) << ',' << rad_to_deg(phi[j]) << ',' << v
+            << ',' << 2.0 * kPi * v << '\n';
+      }
+    }
+  }
+  write_text_atomically(file, out.str());
 }
 
 void write_csv(const FarFieldSet& set, const std::string& file) {
@@ -151,6 +202,17 @@ void run(AppContext& context, const Options& o) {
     if (!(l > 0)) throw UsageError("--lambda-nm: wavelengths must be positive");
   }
   const int instances = o.instances > 0 ? o.instances : sim.instances;
+  const bool full = o.directions == "full";
+  if (full && config.solver_type == "approximate") {
+    throw UsageError(o.config + ": --directions full needs a full-wave solver (e.g. `solver: {type: bem, "
+                     "incidence: plane_wave}`): the approximate solver radiates only the reflected field of "
+                     "the lit top surface, which is meaningful on the upper half of the cone alone "
+                     "(--directions pattern)");
+  }
+  if (full && !o.pattern.empty()) {
+    throw UsageError("--pattern draws the reflection pattern on (-90, 90) deg; it is not available with "
+                     "--directions full (use --csv)");
+  }
 
   // Geometry and instance-only preparation, once per instance (reused by every unit).
   std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepared(instances);
@@ -169,7 +231,9 @@ void run(AppContext& context, const Options& o) {
                   {"instances", std::to_string(instances)},
                   {"azimuth_jitter_deg", std::to_string(sim.azimuth_jitter_deg)},
                   {"field_units", "V/m*sqrt(nm) for a 1 V/m incident plane wave, e^{-i omega t}"},
-                  {"power_units", "W*nm/m^2 (per unit barbule length, nm)"}};
+                  {"power_units", "W*nm/m^2 (per unit barbule length, nm)"},
+                  {"directions", full ? "full_circle: 360 azimuths -180, -179, ..., 179 deg (pattern_count 0)"
+                                      : "pattern+projected"}};
   Progress progress("work units", lambdas.size() * thetas.size() * phis.size(), context.quiet);
   std::size_t done = 0;
   for (double theta_deg : thetas) {
@@ -178,12 +242,13 @@ void run(AppContext& context, const Options& o) {
     const DirectionSet projected = projected_directions(theta, sim.projected_samples);
     std::vector<double> phi_o = pattern.phi_o_rad;
     phi_o.insert(phi_o.end(), projected.phi_o_rad.begin(), projected.phi_o_rad.end());
+    if (full) phi_o = full_circle_directions(kFullCircleSamples).phi_o_rad;
     for (double lambda : lambdas) {
       for (double phi_deg : phis) {
         FarFieldUnit unit;
         unit.lambda_nm = lambda;
         unit.nominal = {theta, deg_to_rad(phi_deg)};
-        unit.pattern_count = pattern.phi_o_rad.size();
+        unit.pattern_count = full ? 0 : pattern.phi_o_rad.size();
         unit.instances.resize(instances);
         tbb::parallel_for(0, instances, [&](int n) {
           const double phi_i[1] = {unit.nominal.phi_rad + jitter_rad(n, instances, sim.azimuth_jitter_deg)};
@@ -197,7 +262,8 @@ void run(AppContext& context, const Options& o) {
   write_far_field_set(set, o.out);
   if (!context.quiet) std::cerr << "wrote " << o.out << "\n";
   if (!o.csv.empty()) {
-    write_csv(set, o.csv);
+    if (full) write_full_circle_csv(set, o.csv);
+    else write_csv(set, o.csv);
     if (!context.quiet) std::cerr << "wrote " << o.csv << "\n";
   }
   if (!o.pattern.empty()) {
@@ -222,7 +288,14 @@ void add_simulate_command(CLI::App& app, AppContext& context) {
   cmd->add_option("--instances", o->instances, "Barbule instances (default: the config's)");
   cmd->add_option("--out", o->out, "FarFieldSet file to write (.ffs)")->required();
   cmd->add_option("--pattern", o->pattern, "Draw a Fig. 7-style picture to this PNG");
-  cmd->add_option("--csv", o->csv, "Write the instance-mean Eq. 10 patterns as CSV");
+  cmd->add_option("--csv", o->csv,
+                  "Write the instance-mean Eq. 10 patterns as CSV (with --directions full: the 2D "
+                  "differential scattering width, normalisation in the header)");
+  cmd->add_option("--directions", o->directions,
+                  "Outgoing directions: pattern (400 bins on (-90, 90) deg plus the projected set) or "
+                  "full (the full circle in 1 deg steps, for validation bodies and full-wave solvers)")
+      ->check(CLI::IsMember({"pattern", "full"}))
+      ->capture_default_str();
   cmd->callback([&context, o] { run(context, *o); });
 }
 
