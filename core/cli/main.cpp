@@ -6,6 +6,10 @@
 #include "plumage/error.hpp"
 #include "plumage/version.hpp"
 
+namespace plumage::cli {
+void add_compare_command(CLI::App& app, AppContext& context);  // cmd_compare.cpp
+}
+
 int main(int argc, char** argv) {
   using namespace plumage::cli;
   AppContext context;
@@ -26,6 +30,7 @@ int main(int argc, char** argv) {
   add_bench_command(app, context);
   add_geometry_command(app, context);
   add_table_command(app, context);
+  add_compare_command(app, context);
 
   try {
     app.parse(argc, argv);
