@@ -28,7 +28,7 @@ namespace plumage::bem {
 struct BemOptions {
   enum class Incidence { beam, plane_wave };
   enum class Method { dense, gmres };
-  double points_per_wavelength = 20.0;  // h ≤ λ/(|n| ppw) on both sides of every interface
+  double points_per_wavelength = 25.0;  // h ≤ λ/(|n| ppw) on both sides of every interface
   Incidence incidence = Incidence::beam;
   Method method = Method::dense;
   double window_fraction = 0.25;

@@ -80,7 +80,7 @@ PairIntegrals pair_integrals(const Segment& A, const Segment& B, cplx gamma, boo
   }
   Rule outer;
   if (shared_end >= 0) {
-    const Rule& gr = graded_rule(q.near_pieces + 1, q.near_outer);
+    const Rule& gr = graded_rule(q.adjacent_pieces, q.near_outer);
     outer = gr;
     if (shared_end == 1) {
       for (double& x : outer.x) x = 1.0 - x;

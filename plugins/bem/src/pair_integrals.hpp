@@ -20,8 +20,9 @@ struct PairIntegrals {
 struct QuadratureOptions {
   int far_points = 4;        // per segment, pairs farther apart than near_factor·h
   double near_factor = 2.0;
-  int near_outer = 6;        // per piece of the outer rule for near pairs
-  int near_pieces = 3;
+  int near_outer = 8;        // per piece of the outer rule for near pairs
+  int near_pieces = 3;       // uniform pieces for near, non-touching pairs
+  int adjacent_pieces = 8;   // geometric pieces (ratio 1/4) toward a shared vertex
   int inner_regular = 6;     // Gauss points for the smooth remainder of near pairs
 };
 

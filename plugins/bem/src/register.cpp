@@ -17,7 +17,7 @@ void register_bem(plumage::Registrar& registrar) {
        .version = "0.1.0",
        .summary = "full-wave 2.5D boundary elements: multi-region PMCHWT, Galerkin tents, analytic "
                   "log/1/R parts, junctions, exact 2.5D Gaussian beam, dense LU per (lambda, theta_i)",
-       .params = {{"points_per_wavelength", "number", "1", "20",
+       .params = {{"points_per_wavelength", "number", "1", "25",
                    "segments per wavelength in the denser side of each interface (h <= lambda/(|n| ppw))"},
                   {"incidence", "choice", "-", "beam",
                    "beam (Gaussian beam with the approximate solver's footprint, per Phi_i) | plane_wave "
@@ -26,7 +26,7 @@ void register_bem(plumage::Registrar& registrar) {
                   {"method", "choice", "-", "dense", "dense (LU) | gmres"}}},
       [](const plumage::ParamView& p, const plumage::PluginContext&) {
         BemOptions o;
-        o.points_per_wavelength = p.number_or("points_per_wavelength", 20.0, plumage::Limits::positive());
+        o.points_per_wavelength = p.number_or("points_per_wavelength", 25.0, plumage::Limits::positive());
         o.incidence = p.choice_or("incidence", kIncidence, "beam") == "beam" ? BemOptions::Incidence::beam
                                                                               : BemOptions::Incidence::plane_wave;
         o.window_fraction = p.number_or("window_fraction", 0.25, plumage::Limits::positive());

@@ -24,14 +24,16 @@ inline Polygon circle_polygon(double r_nm, int n) {
   return p;
 }
 
-// Vertices for a circle of radius r at spacing ≈ λ/(|n| ppw).
-inline int circle_vertices(double r_nm, double lambda_nm, std::complex<double> index, double ppw) {
-  return std::max(12, static_cast<int>(std::ceil(2.0 * std::numbers::pi * r_nm * std::abs(index) * ppw / lambda_nm)));
+// Vertices for a circle of radius r at spacing ≈ λ/(|n| ppw), and at least `min_vertices` so that
+// small circles are resolved geometrically (64: ≤ 5.6° per segment).
+inline int circle_vertices(double r_nm, double lambda_nm, std::complex<double> index, double ppw,
+                           int min_vertices = 64) {
+  return std::max(min_vertices, static_cast<int>(std::ceil(2.0 * std::numbers::pi * r_nm * std::abs(index) * ppw / lambda_nm)));
 }
 
 // Concentric layered cylinder: radii (inner → outer) and materials.
 inline CrossSection layered_cylinder(const std::vector<double>& radii, const std::vector<Material>& mats,
-                                     double lambda_nm, double ppw) {
+                                     double lambda_nm, double ppw, int min_vertices = 64) {
   CrossSection cs;
   cs.label = "test cylinder";
   std::complex<double> nmax = 1.0;
@@ -40,7 +42,7 @@ inline CrossSection layered_cylinder(const std::vector<double>& radii, const std
   }
   for (int k = static_cast<int>(radii.size()) - 1; k >= 0; --k) {
     Region reg;
-    reg.outline = circle_polygon(radii[k], circle_vertices(radii[k], lambda_nm, nmax, ppw));
+    reg.outline = circle_polygon(radii[k], circle_vertices(radii[k], lambda_nm, nmax, ppw, min_vertices));
     reg.material = mats[k];
     reg.parent = static_cast<int>(cs.regions.size()) - 1;
     cs.regions.push_back(reg);
