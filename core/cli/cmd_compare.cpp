@@ -16,6 +16,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -180,12 +181,30 @@ Comparison load_comparison(const fs::path& file, const PluginRegistry& registry)
   c.segment_um = root.number_or("segment_um", 10.0, Limits::positive());
   {
     const ParamView structure = c.species.root.child("structure");
+    std::map<std::string, std::string> overrides{{"outline.width_um", format_number(c.segment_um)}};
+    // Further generator parameters by dotted path (e.g. outline.thickness_um), replacing the
+    // species' values; each must exist in the species' structure section.
+    std::optional<ParamView> extra = root.child_if("structure_overrides");
+    if (extra) {
+      for (const auto& key : extra->keys()) {
+        if (key == "outline.width_um") extra->fail(key, "the width is segment_um");
+        std::ostringstream value;
+        std::set<std::string> unused;
+        emit_yaml(value, extra->node(key), "", {}, unused);
+        overrides[key] = value.str();
+      }
+    }
     std::ostringstream text;
     std::set<std::string> used;
-    emit_yaml(text, structure, "", {{"outline.width_um", format_number(c.segment_um)}}, used);
+    emit_yaml(text, structure, "", overrides, used);
     if (!used.count("outline.width_um")) {
       root.fail("segment_um", "the species' structure has no outline.width_um to set (" +
                                   species_file.string() + ")");
+    }
+    if (extra) {
+      for (const auto& key : extra->keys()) {
+        if (!used.count(key)) extra->fail(key, "the species' structure has no parameter '" + key + "'");
+      }
     }
     const ConfigDocument segment = ConfigDocument::parse(
         text.str(), species_file.string() + " (structure with outline.width_um = segment_um of " + file.string() + ")");
