@@ -123,7 +123,9 @@ TEST_CASE("flat barbule: reflected fraction tends to |r|^2 as the window widens"
   const double bin = kPi / 400;
   double previous_error = 1.0;
   for (double width : {10000.0, 20000.0, 40000.0}) {
-    ApproximateSolver solver(ApproximateSolver::Currents::reflected, 0.25);
+    // Paper Eq. 8 over Eq. 9 (with the default lossless normaliser a constant r gives |r|²
+    // exactly at any width).
+    ApproximateSolver solver(ApproximateSolver::Currents::reflected, 0.25, ApproximateSolver::Normalisation::eq9);
     auto prepared = solver.prepare(flat_top(width, 30.0), std::make_shared<FixedReflection>(rs, rp));
     const double phis[1] = {deg_to_rad(20.0)};
     const FarField ff = solver.solve(*prepared, 550.0, deg_to_rad(20.0), phis, dirs.phi_o_rad).front();

@@ -6,7 +6,7 @@
 
 #include "plumage/error.hpp"
 #include "plumage/simd_math.hpp"
-#include "tent_integrals.hpp"
+#include "radiation.hpp"
 
 namespace plumage {
 
@@ -54,17 +54,18 @@ Complex far_field_prefactor(double k0, double gamma0) {
   return (k0 / 4.0) * std::sqrt(2.0 / (kPi * gamma0)) * std::polar(1.0, -kPi / 4);
 }
 
-// Directions per kernel block: the block (nodes × 64 complex ≈ 1.4 MB for 1350 nodes) stays in
-// cache while the GEMM reads it.
-constexpr std::size_t kDirectionBlock = 64;
-
 // Current amplitudes at every node for one incident direction, both polarizations: columns
 // [pol][J̃x J̃y J̃z Mx My Mz] with J̃ = η0 J = n̂ × η0 H and M = −n̂ × E (Eq. 2), times the window
 // and the regularity, without the incident phase e^{i k_i·ρ} (the kernel carries it). Also the
 // incident power Φ_i (Eq. 9).
+// With `lossless`, the reflected wave at every node keeps its polarization and phase but carries
+// all the incident power (|a_s|² + |a_p|² = |E_i·ŝ|² + |η0H_i·ŝ|²), without the regularity
+// factor: the reference of the `lossless` normalisation. Where nothing is reflected (a
+// polarization at its Brewster angle) it falls back to a perfect conductor (a_s = −E_i·ŝ,
+// a_p = η0H_i·ŝ).
 void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, const Vec3& w_i,
-                     std::span<const JonesReflection> jones, bool with_incident,
-                     Eigen::MatrixXcd& amplitudes, std::array<double, 2>& incident_power) {
+                     std::span<const JonesReflection> jones, bool with_incident, bool lossless,
+                     Eigen::Ref<Eigen::MatrixXcd> amplitudes, std::array<double, 2>& incident_power) {
   const PlaneWavePolarization pol[2] = {incident_polarization(0, incident),
                                         incident_polarization(1, incident)};
   amplitudes.setZero();
@@ -88,14 +89,23 @@ void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, 
     const Vec3 w_r{2 * cos_a * n[0] - w_i[0], 2 * cos_a * n[1] - w_i[1], 2 * cos_a * n[2] - w_i[2]};
     const Vec3 r_hat = cross3(w_r, s_hat);
     const JonesReflection& r = jones[m];
-    const double weight = top.window[m] * top.regularity[m];
+    const double weight = top.window[m] * (lossless ? 1.0 : top.regularity[m]);
     const auto row = static_cast<Eigen::Index>(m);
     for (int p = 0; p < 2; ++p) {
       const Vec3& e = pol[p].e;
       const Vec3& h = pol[p].eta0_h;
       const double c_e = dot3(e, s_hat), c_h = dot3(h, s_hat);
-      const Complex a_s = r.ss * c_e + r.sp * c_h;
-      const Complex a_p = r.ps * c_e + r.pp * c_h;
+      Complex a_s = r.ss * c_e + r.sp * c_h;
+      Complex a_p = r.ps * c_e + r.pp * c_h;
+      if (lossless) {
+        const double in = c_e * c_e + c_h * c_h, out = std::norm(a_s) + std::norm(a_p);
+        if (out > 1e-24 * in) {
+          const double scale = std::sqrt(in / out);
+          a_s *= scale, a_p *= scale;
+        } else {
+          a_s = -c_e, a_p = c_h;
+        }
+      }
       CVec3 e_tot, h_tot;  // E and η0 H at the node, incident phase factored out
       for (int c = 0; c < 3; ++c) {
         e_tot[c] = a_s * s_hat[c] - a_p * r_hat[c];
@@ -114,74 +124,6 @@ void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, 
     }
   }
 }
-
-// Kᵀ for a block of directions: Kᵀ[m, j] = ∫ Λ_m(l) e^{i(χ(l) − γ0 ρ̂_j·ρ(l))} dl, exact for
-// the tent Λ_m and the linear phase along each straight segment (tent_integrals.hpp). Written as
-// plain loops over structure-of-arrays buffers so that they vectorise; complex products are
-// spelled out in real arithmetic (std::complex's operator* calls __muldc3 for Inf/NaN recovery).
-class KernelBuilder {
- public:
-  explicit KernelBuilder(const PreparedTop& top) : top_(top) {
-    const std::size_t v = top.vertices.size() + 8;
-    for (auto* b : {&psi_, &er_, &ei_, &ar_, &ai_, &br_, &bi_, &u_}) b->assign(v, 0.0);
-    h_.assign(v, 0.0);
-    for (std::size_t k = 0; k + 1 < top.vertices.size(); ++k) h_[k] = top.segment_length[k];
-  }
-
-  void build(double gamma0, const std::vector<double>& chi, std::span<const double> phi_o_rad,
-             Eigen::MatrixXcd& kt) {
-    const std::size_t verts = top_.vertices.size();
-    const std::size_t segs = verts - 1;
-    const std::size_t nodes = verts - 2;
-    kt.resize(static_cast<Eigen::Index>(nodes), static_cast<Eigen::Index>(phi_o_rad.size()));
-    const Vec2* v = top_.vertices.data();
-    for (std::size_t j = 0; j < phi_o_rad.size(); ++j) {
-      const double sx = gamma0 * std::sin(phi_o_rad[j]), sz = gamma0 * std::cos(phi_o_rad[j]);
-      double* psi = psi_.data();
-      for (std::size_t k = 0; k < verts; ++k) psi[k] = chi[k] - (sx * v[k].x + sz * v[k].z);
-      for (std::size_t k = verts; k < verts + 4; ++k) psi[k] = psi[verts - 1];
-      for (std::size_t k = 0; k < verts; k += 4) {
-        simd::v4d s, c;
-        simd::sincos(simd::v4d{psi[k], psi[k + 1], psi[k + 2], psi[k + 3]}, s, c);
-        for (int l = 0; l < 4; ++l) er_[k + l] = c[l], ei_[k + l] = s[l];
-      }
-      // Segment phase increments u and the tent weights A(u), B(u).
-      for (std::size_t k = 0; k < segs + 4; ++k) u_[k] = psi[k + 1] - psi[k];
-      double largest = 0.0;
-      for (std::size_t k = 0; k < segs; k += 4) {
-        simd::v4d a_re, a_im, b_re, b_im;
-        const simd::v4d u{u_[k], u_[k + 1], u_[k + 2], u_[k + 3]};
-        detail::tent_weights_series(u, a_re, a_im, b_re, b_im);
-        for (int l = 0; l < 4; ++l) {
-          ar_[k + l] = a_re[l], ai_[k + l] = a_im[l], br_[k + l] = b_re[l], bi_[k + l] = b_im[l];
-          largest = std::max(largest, std::abs(u[l]));
-        }
-      }
-      if (largest > detail::kTaylorRange) {  // coarse sampling or very short λ: closed form
-        for (std::size_t k = 0; k < segs; ++k) {
-          if (std::abs(u_[k]) <= detail::kTaylorRange) continue;
-          Complex a, b;
-          detail::tent_weights_closed(u_[k], a, b);
-          ar_[k] = a.real(), ai_[k] = a.imag(), br_[k] = b.real(), bi_[k] = b.imag();
-        }
-      }
-      // Node m (vertex m) collects h·e^{iψ}·B of segment m−1 and h·e^{iψ}·A of segment m.
-      double* out = reinterpret_cast<double*>(kt.data() + static_cast<Eigen::Index>(j * nodes));
-      for (std::size_t m = 1; m <= nodes; ++m) {
-        const double pr = er_[m - 1] * br_[m - 1] - ei_[m - 1] * bi_[m - 1];
-        const double pi = er_[m - 1] * bi_[m - 1] + ei_[m - 1] * br_[m - 1];
-        const double nr = er_[m] * ar_[m] - ei_[m] * ai_[m];
-        const double ni = er_[m] * ai_[m] + ei_[m] * ar_[m];
-        out[2 * (m - 1)] = h_[m - 1] * pr + h_[m] * nr;
-        out[2 * (m - 1) + 1] = h_[m - 1] * pi + h_[m] * ni;
-      }
-    }
-  }
-
- private:
-  const PreparedTop& top_;
-  std::vector<double> psi_, er_, ei_, ar_, ai_, br_, bi_, u_, h_;
-};
 
 }  // namespace
 
@@ -244,7 +186,8 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
   top.reflection->reflect(requests, jones);
 
   // 2. Per azimuth: current amplitudes (Eq. 2, without the incident phase), then the far field
-  // in blocks of directions: kernel block × amplitudes as one GEMM.
+  // (radiation.hpp); with the `lossless` normalisation also the far field of the lossless
+  // reference currents (fill_amplitudes) on the 400 pattern bins.
   std::vector<FarField> out(n_phi);
   const std::size_t verts = top.vertices.size();
   for (const Vec2& v : top.vertices) {
@@ -254,10 +197,13 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
     }
   }
   const Complex prefactor = far_field_prefactor(k0, gamma0);
-  Eigen::MatrixXcd amplitudes(static_cast<Eigen::Index>(nodes), 12);
-  Eigen::MatrixXcd kernel_t, transforms;
-  KernelBuilder kernel(top);
+  const bool lossless = normalisation_ == Normalisation::lossless;
+  static const std::vector<double> kPatternBins = pattern_directions(kReferenceBins).phi_o_rad;
+  const auto n = static_cast<Eigen::Index>(nodes);
+  Eigen::MatrixXcd amplitudes(n, lossless ? 24 : 12);
+  Eigen::MatrixXcd main_out, reference_out;
   std::vector<double> chi(verts);
+  const bool with_incident = currents_ == Currents::incident_and_reflected;
   for (std::size_t a = 0; a < n_phi; ++a) {
     const IncidentDirection incident{theta_i_rad, phi_i_rad[a]};
     const double sp = std::sin(incident.phi_rad), cp = std::cos(incident.phi_rad);
@@ -267,26 +213,36 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
     ff.incident = incident;
     ff.phi_o_rad.assign(phi_o_rad.begin(), phi_o_rad.end());
     fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * nodes, nodes),
-                    currents_ == Currents::incident_and_reflected, amplitudes, ff.incident_power);
+                    with_incident, false, amplitudes.leftCols(12), ff.incident_power);
+    std::array<double, 2> unused{};
+    if (lossless) {
+      fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * nodes, nodes),
+                      with_incident, true, amplitudes.rightCols(12), unused);
+    }
     // Incident phase k_i·ρ = −k0 ω_i·ρ at every vertex; the kernel integrates it exactly.
     for (std::size_t k = 0; k < verts; ++k) {
       chi[k] = -k0 * ct * (sp * top.vertices[k].x + cp * top.vertices[k].z);
     }
-    for (int p = 0; p < 2; ++p) ff.field[p].resize(n_dir);
-    for (std::size_t j0 = 0; j0 < n_dir; j0 += kDirectionBlock) {
-      const std::size_t nb = std::min(kDirectionBlock, n_dir - j0);
-      kernel.build(gamma0, chi, phi_o_rad.subspan(j0, nb), kernel_t);
-      transforms.noalias() = kernel_t.transpose() * amplitudes;
-      for (std::size_t jb = 0; jb < nb; ++jb) {
-        const std::size_t j = j0 + jb;
-        const Vec3 o{ct * std::sin(phi_o_rad[j]), -st, ct * std::cos(phi_o_rad[j])};
-        const auto row = static_cast<Eigen::Index>(jb);
-        for (int p = 0; p < 2; ++p) {
-          const Eigen::Index col = 6 * p;
-          const CVec3 sj{transforms(row, col), transforms(row, col + 1), transforms(row, col + 2)};
-          const CVec3 sm{transforms(row, col + 3), transforms(row, col + 4), transforms(row, col + 5)};
-          ff.field[p][j] = far_field_vector(prefactor, o, sj, sm);
+    std::vector<detail::RadiationTargets> targets{{phi_o_rad, 0, 4, &main_out}};
+    if (lossless) targets.push_back({kPatternBins, 4, 4, &reference_out});
+    detail::radiate(top.vertices, top.segment_length, chi, gamma0, theta_i_rad, amplitudes, targets,
+                    chunking_);
+    for (int p = 0; p < 2; ++p) {
+      ff.field[p].resize(n_dir);
+      for (std::size_t j = 0; j < n_dir; ++j) {
+        const double sj = std::sin(phi_o_rad[j]), cj = std::cos(phi_o_rad[j]);
+        const Complex o1 = prefactor * main_out(static_cast<Eigen::Index>(j), 2 * p);
+        const Complex o2 = prefactor * main_out(static_cast<Eigen::Index>(j), 2 * p + 1);
+        ff.field[p][j] = {o1 * cj + o2 * (st * sj), o2 * ct, -o1 * sj + o2 * (st * cj)};
+      }
+      if (lossless) {
+        // Power the lossless reference currents send into the cone (Eq. 8 with their |𝓔|²,
+        // midpoint rule on the pattern bins): the normaliser.
+        double sum = 0.0;
+        for (Eigen::Index j = 0; j < reference_out.rows(); ++j) {
+          sum += std::norm(reference_out(j, 2 * p)) + std::norm(reference_out(j, 2 * p + 1));
         }
+        ff.incident_power[p] = ct * std::norm(prefactor) * sum * (kPi / kReferenceBins) / (2.0 * kEta0_ohm);
       }
     }
   }
@@ -312,7 +268,7 @@ ApproximateSolver::NodeCurrents ApproximateSolver::currents(const Prepared& prep
   Eigen::MatrixXcd amplitudes(static_cast<Eigen::Index>(nodes), 12);
   NodeCurrents out;
   fill_amplitudes(top, incident, {ct * sp, std::sin(incident.theta_rad), ct * cp}, jones,
-                  currents_ == Currents::incident_and_reflected, amplitudes, out.incident_power);
+                  currents_ == Currents::incident_and_reflected, false, amplitudes, out.incident_power);
   for (std::size_t m = 0; m < nodes; ++m) {
     const Vec2 v = top.vertices[m + 1];
     out.position.push_back(v);
@@ -371,24 +327,37 @@ FarField ApproximateSolver::solve_direct_sum(const Prepared& prepared, double la
 
 void register_approximate_solver(PluginRegistry& registry) {
   static constexpr std::string_view kCurrents[] = {"reflected", "incident_and_reflected"};
+  static constexpr std::string_view kNormalisations[] = {"lossless", "eq9"};
+  static constexpr std::string_view kFarFields[] = {"chunked", "exact"};
   registry.builtin_registrar().add<ScatteringSolver>(
       {.kind = "",
        .type = "approximate",
-       .version = "1.0.0",
+       .version = "1.1.0",
        .summary = "paper §4: local reflection under each top node, Eq. 2 currents, 2.5D far "
-                  "field on the specular cone (tent × plane-wave integrals, one GEMM for all "
-                  "incident azimuths and polarizations)",
+                  "field on the specular cone (exact tent × plane-wave integrals, chunked "
+                  "band-limited interpolation), normalised by its own lossless reference",
        .params = {{"currents", "choice", "-", "reflected",
                    "reflected (E_r, H_r only, reference code) | incident_and_reflected (Eq. 2)"},
                   {"window_fraction", "number", "1", "0.25",
-                   "Gaussian window w(x) = exp(-x^2/s^2) with s = window_fraction * width"}}},
+                   "Gaussian window w(x) = exp(-x^2/s^2) with s = window_fraction * width"},
+                  {"normalisation", "choice", "-", "lossless",
+                   "lossless (power the same currents radiate with |r| set to 1 at every node) | eq9 (paper Eq. 9)"},
+                  {"far_field", "choice", "-", "chunked",
+                   "chunked (band-limited interpolation, ~1e-6 of exact) | exact (every node x direction)"}}},
       [](const ParamView& p, const PluginContext&) {
         const auto currents = p.choice_or("currents", kCurrents, "reflected");
         const double fraction = p.number_or("window_fraction", 0.25, Limits::positive());
+        const auto normalisation = p.choice_or("normalisation", kNormalisations, "lossless");
+        const auto far_field = p.choice_or("far_field", kFarFields, "chunked");
+        detail::ChunkingOptions chunking;
+        chunking.chunked = far_field == "chunked";
         return std::make_unique<ApproximateSolver>(
             currents == "reflected" ? ApproximateSolver::Currents::reflected
                                     : ApproximateSolver::Currents::incident_and_reflected,
-            fraction);
+            fraction,
+            normalisation == "lossless" ? ApproximateSolver::Normalisation::lossless
+                                      : ApproximateSolver::Normalisation::eq9,
+            chunking);
       });
 }
 

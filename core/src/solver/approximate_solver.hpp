@@ -7,19 +7,39 @@
 // | currents        | choice | -    | reflected | `reflected` (E_r, H_r only, as the reference code)  |
 // |                 |        |      |           | or `incident_and_reflected` (Eq. 2 as printed)      |
 // | window_fraction | number | 1    | 0.25      | Gaussian window w(x) = exp(−x²/s²), s = fraction·W  |
+// | normalisation   | choice | -    | lossless  | `lossless`: FarField::incident_power is the power   |
+// |                 |        |      |           | the same currents radiate into the cone with the    |
+// |                 |        |      |           | local reflectance set to 1 (phases and polarization |
+// |                 |        |      |           | kept); `eq9`: paper Eq. 9                           |
+// | far_field       | choice | -    | chunked   | `chunked` (band-limited interpolation per chunk) or |
+// |                 |        |      |           | `exact` (every node × direction); radiation.hpp     |
+//
+// Why `lossless` is the default (docs/architecture.md, docs/validation.md): with windowed
+// Kirchhoff currents, Eq. 9 lets a perfect flat mirror reflect 1.56 of the incident power at
+// (cos θ_i, cos φ_i) = (0.05, 0.05) and 0.68 at (1, 0.05) — the window's angular spread meets
+// the obliquity of the currents and the horizon — and real barbules up to 2.6. Dividing by the
+// same surface's result with every local reflectance raised to 1 cancels that error: a flat
+// mirror gives exactly 1, a flat stack its |r|², and the reflected fraction stays in [0, 1].
+// Cost: 12 more current columns in the far field (~+40 %).
 #pragma once
 
 #include "plumage/plugin_registry.hpp"
 #include "plumage/scattering_solver.hpp"
+#include "chunking_options.hpp"
 
 namespace plumage {
 
 class ApproximateSolver final : public ScatteringSolver {
  public:
   enum class Currents { reflected, incident_and_reflected };
+  enum class Normalisation { lossless, eq9 };
+  static constexpr int kReferenceBins = 400;  // the pattern bins of the lossless normaliser
 
-  ApproximateSolver(Currents currents, double window_fraction)
-      : currents_(currents), window_fraction_(window_fraction) {}
+  ApproximateSolver(Currents currents, double window_fraction,
+                    Normalisation normalisation = Normalisation::lossless,
+                    detail::ChunkingOptions chunking = {})
+      : currents_(currents), window_fraction_(window_fraction), normalisation_(normalisation),
+        chunking_(chunking) {}
 
   std::shared_ptr<const Prepared> prepare(
       const CrossSection& section, std::shared_ptr<const LocalReflection> reflection) const override;
@@ -46,6 +66,8 @@ class ApproximateSolver final : public ScatteringSolver {
  private:
   Currents currents_;
   double window_fraction_;
+  Normalisation normalisation_;
+  detail::ChunkingOptions chunking_;
 };
 
 // Registers "approximate" with the registry's built-in registrar.
