@@ -345,6 +345,8 @@ struct Options {
   std::string config;
   std::string out;
   bool no_pictures = false;
+  std::vector<std::string> only;  // run only these methods (the reference always runs)
+  std::string reference;          // overrides the config's reference
 };
 
 struct MethodRun {
@@ -357,7 +359,28 @@ struct MethodRun {
 };
 
 void run(AppContext& context, const Options& o) {
-  const Comparison c = load_comparison(o.config, context.registry());
+  Comparison c = load_comparison(o.config, context.registry());
+  if (!o.reference.empty()) {
+    auto it = std::find_if(c.methods.begin(), c.methods.end(), [&](const Method& m) { return m.name == o.reference; });
+    if (it == c.methods.end()) throw UsageError("--reference: " + o.config + " has no method named '" + o.reference + "'");
+    c.reference = static_cast<std::size_t>(it - c.methods.begin());
+  }
+  if (!o.only.empty()) {
+    for (const auto& name : o.only) {
+      if (std::none_of(c.methods.begin(), c.methods.end(), [&](const Method& m) { return m.name == name; })) {
+        throw UsageError("--only: " + o.config + " has no method named '" + name + "'");
+      }
+    }
+    const std::string reference = c.methods[c.reference].name;
+    std::vector<Method> kept;
+    for (auto& m : c.methods) {
+      if (m.name == reference || std::find(o.only.begin(), o.only.end(), m.name) != o.only.end()) {
+        if (m.name == reference) c.reference = kept.size();
+        kept.push_back(std::move(m));
+      }
+    }
+    c.methods = std::move(kept);
+  }
   const fs::path out_dir = o.out.empty() ? fs::path(c.name + "-compare") : fs::path(o.out);
 
   // The barbule segment, exact and reduced.
@@ -504,12 +527,12 @@ void run(AppContext& context, const Options& o) {
   write_text_atomically(fs::path(base).concat("-times.csv"), times.str());
 
   // Summary on stdout.
-  std::cout << std::left << std::setw(24) << "method" << std::setw(16) << "geometry" << std::right
+  std::cout << std::left << std::setw(30) << "method" << std::setw(16) << "geometry" << std::right
             << std::setw(10) << "time_s" << std::setw(12) << "corr_min" << std::setw(12) << "corr_mean"
             << std::setw(12) << "l2_mean" << std::setw(12) << "l2_max" << std::setw(12) << "|dR|_max" << "\n";
   for (std::size_t mi = 0; mi < c.methods.size(); ++mi) {
     const Summary& s = summary[mi];
-    std::cout << std::left << std::setw(24) << c.methods[mi].name << std::setw(16)
+    std::cout << std::left << std::setw(30) << c.methods[mi].name << std::setw(16)
               << (c.methods[mi].geometry == Geometry::exact ? "exact" : "reduced_layers") << std::right
               << std::fixed << std::setprecision(3) << std::setw(10) << runs[mi].prepare_s + runs[mi].solve_s
               << std::setprecision(5) << std::setw(12) << s.corr_min << std::setw(12) << s.corr_sum / s.n
@@ -607,6 +630,9 @@ void add_compare_command(CLI::App& app, AppContext& context) {
   cmd->add_option("config", o->config, "Comparison YAML (configs/compare/*.yaml; docs/formats.md)")->required();
   cmd->add_option("--out", o->out, "Output folder (default: <comparison>-compare)");
   cmd->add_flag("--no-pictures", o->no_pictures, "Write the CSV files only");
+  cmd->add_option("--only", o->only, "Run only these methods (comma-separated; the reference always runs)")
+      ->delimiter(',');
+  cmd->add_option("--reference", o->reference, "Compare against this method instead of the config's reference");
   cmd->callback([&context, o] { run(context, *o); });
 }
 
