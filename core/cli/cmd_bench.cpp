@@ -189,6 +189,8 @@ void add_bench_command(CLI::App& app, AppContext& context) {
   bench->require_subcommand(1);
   add_bench_geometry_command(*bench, context);
   add_bench_fdtd_command(*bench, context);
+  void add_bench_bem_command(CLI::App&, AppContext&);  // bench_bem.cpp (issue 6)
+  add_bench_bem_command(*bench, context);
 
   auto ml = std::make_shared<MultilayerBench>();
   auto* cmd = bench->add_subcommand("multilayer", "Multilayer reflection: time per (point, wavelength)");

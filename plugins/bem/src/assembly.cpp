@@ -78,24 +78,35 @@ Eigen::MatrixXcd assemble_dense(const Mesh& mesh, const std::vector<Medium>& md,
                                 const QuadratureOptions& q) {
   const int n = mesh.unknowns();
   Eigen::MatrixXcd Z = Eigen::MatrixXcd::Zero(n, n);
+  auto scatter = [&](const Segment& A, const Segment& B, const PairIntegrals& in, int dom) {
+    const double sa = A.a == dom ? 1.0 : -1.0, sb = B.a == dom ? 1.0 : -1.0;
+    Local8 loc{};
+    local_block(A, B, in, md[dom], k0, beta, sa * sb, loc);
+    int ra[8], cb[8];
+    for (int l = 0; l < 8; ++l) ra[l] = global_index(mesh, A, l), cb[l] = global_index(mesh, B, l);
+    for (int r = 0; r < 8; ++r) {
+      for (int c = 0; c < 8; ++c) Z(ra[r], cb[c]) += loc[r][c];
+    }
+  };
   for (int dom = 0; dom < mesh.a_count; ++dom) {
     const auto& segs = mesh.domain_segments[dom];
-    for (int ia : segs) {
-      const Segment& A = mesh.segments[ia];
-      const double sa = A.a == dom ? 1.0 : -1.0;
-      int ra[8];
-      for (int l = 0; l < 8; ++l) ra[l] = global_index(mesh, A, l);
-      for (int ib : segs) {
-        const Segment& B = mesh.segments[ib];
-        const double sb = B.a == dom ? 1.0 : -1.0;
-        const PairIntegrals in = pair_integrals(A, B, md[dom].gamma, ia == ib, q);
-        Local8 loc{};
-        local_block(A, B, in, md[dom], k0, beta, sa * sb, loc);
-        int cb[8];
-        for (int l = 0; l < 8; ++l) cb[l] = global_index(mesh, B, l);
-        for (int r = 0; r < 8; ++r) {
-          for (int c = 0; c < 8; ++c) Z(ra[r], cb[c]) += loc[r][c];
+    for (std::size_t x = 0; x < segs.size(); ++x) {
+      const Segment& A = mesh.segments[segs[x]];
+      for (std::size_t y = x; y < segs.size(); ++y) {
+        const Segment& B = mesh.segments[segs[y]];
+        const PairIntegrals in = pair_integrals(A, B, md[dom].gamma, x == y, q);
+        scatter(A, B, in, dom);
+        if (x == y) continue;
+        // (B, A) from the same integrals: I' = Iᵀ, P' = −Qᵀ, Q' = −Pᵀ (R̂ changes sign)
+        PairIntegrals tr;
+        for (int i = 0; i < 2; ++i) {
+          for (int j = 0; j < 2; ++j) {
+            tr.I[j][i] = in.I[i][j];
+            tr.P[j][i] = -in.Q[i][j];
+            tr.Q[j][i] = -in.P[i][j];
+          }
         }
+        scatter(B, A, tr, dom);
       }
     }
   }

@@ -48,6 +48,17 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
   sys->beta = -sys->k0 * std::sin(theta);
   sys->mesh = build_mesh(geometry, lambda_nm, options.points_per_wavelength);
   sys->media = media(geometry, lambda_nm, sys->beta);
+  const double n = sys->mesh.unknowns();
+  if (n > options.max_dense_unknowns) {
+    throw Error("bem: " + std::to_string(sys->mesh.unknowns()) + " unknowns at " + std::to_string(lambda_nm) +
+                " nm (" + std::to_string(sys->mesh.segments.size()) + " segments) exceed max_dense_unknowns = " +
+                std::to_string(options.max_dense_unknowns) + " (dense LU would need " +
+                std::to_string(static_cast<long>(n * n * 16 / 1e9 + 0.5)) +
+                " GB); the fast (GMRES) solver is not implemented yet — simulate a narrower segment");
+  }
+  if (options.method == BemOptions::Method::gmres) {
+    throw Error("bem: method gmres is not implemented yet (use method: dense)");
+  }
   auto t0 = std::chrono::steady_clock::now();
   Eigen::MatrixXcd Z = assemble_dense(sys->mesh, sys->media, sys->k0, sys->beta, options.quadrature);
   sys->assembly_seconds = seconds_since(t0);

@@ -28,10 +28,13 @@ namespace plumage::bem {
 struct BemOptions {
   enum class Incidence { beam, plane_wave };
   enum class Method { dense, gmres };
-  double points_per_wavelength = 25.0;  // h ≤ λ/(|n| ppw) on both sides of every interface
+  double points_per_wavelength = 30.0;  // h ≤ λ/(|n| ppw) on both sides of every interface
   Incidence incidence = Incidence::beam;
   Method method = Method::dense;
   double window_fraction = 0.25;
+  // Dense LU stores N² complex numbers: refuse larger systems (16 GB at 31 600 unknowns) with a
+  // clear error instead of exhausting memory. The fast solver of issue 6 (Deliver 2) is not done.
+  int max_dense_unknowns = 20000;
   QuadratureOptions quadrature;
 };
 
