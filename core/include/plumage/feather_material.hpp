@@ -1,0 +1,89 @@
+// A feather material: what a renderer needs of one species variant (paper §5, §7.1; spec
+// geometry-and-brdf §4.3–4.9). Made by `plumage characterize` from simulated far fields, read by
+// FeatherBsdf. File format (.plm): docs/formats.md.
+//
+// Per wavelength bin w and incident-grid node (i, j) ↔ (cos θ_i, cos φ_i) = (i, j)/grid, the
+// eight fitted parameters of MaterialNode. Nodes with i = 0 or j = 0 (grazing) are extrapolated;
+// the others come from fits (optionally smoothed, spec §4.7). Between nodes: bicubic Hermite
+// patches with finite-difference derivatives (spec §4.7 step 3), evaluated by lookup().
+//
+// Incident directions with θ_i < 0 or φ_i < 0 are served by mirror symmetry (spec §4.9 step 1):
+// only cos θ_i and cos φ_i enter the lookup; FeatherBsdf mirrors ω_o.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace plumage {
+
+struct MaterialNode {
+  double m_eff = 0.1;      // GGX roughness of the mean lobe, [0.001, 1]
+  double phi_eff = 0.0;    // its effective incident azimuth φ_eff (rad)
+  double f_eff = 0.0;      // its scale F_eff times cos θ_i cos φ_i (vanishes at grazing, §4.3)
+  double m_sta = 0.1;      // the same three for the statistics (coherent) lobe, §4.4
+  double phi_sta = 0.0;
+  double f_sta = 0.0;      // F_sta times cos θ_i cos φ_i
+  double pol_share = 0.5;  // r: share of the reflected energy in polarization 1 (§4.5)
+  double correlation = 1;  // l / l0: noise correlation length in direction cosine, relative (§4.6)
+};
+inline constexpr int kMaterialParameters = 8;
+// The parameters in file order (docs/formats.md), for loops and tables.
+inline constexpr std::array<double MaterialNode::*, kMaterialParameters> kMaterialFields = {
+    &MaterialNode::m_eff, &MaterialNode::phi_eff, &MaterialNode::f_eff, &MaterialNode::m_sta,
+    &MaterialNode::phi_sta, &MaterialNode::f_sta, &MaterialNode::pol_share, &MaterialNode::correlation};
+inline constexpr std::array<const char*, kMaterialParameters> kMaterialFieldNames = {
+    "m_eff", "phi_eff", "f_eff", "m_sta", "phi_sta", "f_sta", "pol_share", "correlation"};
+
+// Noise functions (spec §4.8): stationary Gaussian, zero mean, unit variance, with the measured
+// autocorrelation, sampled at u_t = −1 + (2t + 1)/samples, t = 0 … samples − 1 (u ∈ [−1, 1] is
+// scaled by l at evaluation). Instance k of a BRDF uses functions 2k mod count and 2k + 1 mod count.
+struct NoisePool {
+  int samples = 1024;
+  double lag1 = 0.0;             // ρ(1), for variance-preserving linear interpolation
+  std::vector<float> functions;  // count × samples, each function contiguous
+
+  std::size_t count() const { return samples > 0 ? functions.size() / static_cast<std::size_t>(samples) : 0; }
+  const float* function(std::size_t k) const { return functions.data() + (k % count()) * static_cast<std::size_t>(samples); }
+};
+
+struct FeatherMaterial {
+  static constexpr std::uint32_t kFormatVersion = 1;
+
+  std::string label;        // "species/variant"
+  std::string config_hash;  // of the species config it was characterised from
+  std::string fidelity;     // preview | production | …
+  double sigma = 0.04;      // D_y spread of both lobes (spec §4.3)
+  double l0 = 0.0;          // correlation length at the reference unit (400 nm, normal), direction cosine
+  int grid = 20;            // cos θ_i, cos φ_i nodes 0 … grid
+  std::vector<double> lambda_nm;    // bin starts; bin w covers [lambda_nm[w], lambda_nm[w] + bin_width_nm)
+  double bin_width_nm = 6.0;
+  std::vector<MaterialNode> nodes;  // [w][i][j], (grid + 1)² per wavelength bin
+  NoisePool noise;
+
+  std::size_t node_index(std::size_t w, int i, int j) const {
+    return (w * static_cast<std::size_t>(grid + 1) + static_cast<std::size_t>(i)) * static_cast<std::size_t>(grid + 1) +
+           static_cast<std::size_t>(j);
+  }
+  const MaterialNode& node(std::size_t w, int i, int j) const { return nodes[node_index(w, i, j)]; }
+  MaterialNode& node(std::size_t w, int i, int j) { return nodes[node_index(w, i, j)]; }
+
+  // Bin of a wavelength (floor binning, clamped to the table), spec §4.9 step 7.
+  std::size_t wavelength_bin(double lambda_nm) const;
+  // Parameters at (cos θ_i, cos φ_i) ∈ [0, 1]² for bin w: bicubic in the node grid; F's divided
+  // back by cos θ_i cos φ_i (0 at exact grazing); m clamped to [0.001, 1], φ to [−π/2, π/2];
+  // pol_share to [0, 1]; correlation ≥ 0. Absolute correlation length = correlation · l0.
+  MaterialNode lookup(std::size_t w, double cos_theta_i, double cos_phi_i) const;
+  // Smallest absolute correlation length over the bins at normal incidence: the noise cut-off
+  // shared by every wavelength (spec §4.9 step 5).
+  double min_correlation_length() const;
+};
+
+// Atomic write (temporary file + rename) with a header, the format version and a checksum;
+// read() verifies both and names the file in every error.
+void write_feather_material(const std::filesystem::path& file, const FeatherMaterial& material);
+FeatherMaterial read_feather_material(const std::filesystem::path& file);
+
+}  // namespace plumage

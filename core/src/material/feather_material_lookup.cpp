@@ -1,0 +1,73 @@
+// FeatherMaterial lookups: wavelength bins and bicubic Hermite interpolation over the incident
+// grid (spec geometry-and-brdf §4.7 step 3, §4.9 step 2).
+#include <algorithm>
+#include <cmath>
+
+#include "plumage/conventions.hpp"
+#include "plumage/error.hpp"
+#include "plumage/feather_material.hpp"
+
+namespace plumage {
+
+namespace {
+
+// Cubic Hermite basis on [0, 1]: value at 0, value at 1, slope at 0, slope at 1.
+std::array<double, 4> hermite(double t) {
+  const double t2 = t * t, t3 = t2 * t;
+  return {2 * t3 - 3 * t2 + 1, -2 * t3 + 3 * t2, t3 - 2 * t2 + t, t3 - t2};
+}
+
+}  // namespace
+
+std::size_t FeatherMaterial::wavelength_bin(double lambda) const {
+  if (lambda_nm.empty()) throw Error("feather material " + label + ": no wavelength bins");
+  const double t = std::floor((lambda - lambda_nm.front()) / bin_width_nm);
+  return static_cast<std::size_t>(std::clamp(t, 0.0, static_cast<double>(lambda_nm.size() - 1)));
+}
+
+MaterialNode FeatherMaterial::lookup(std::size_t w, double cos_theta_i, double cos_phi_i) const {
+  const double ct = std::clamp(cos_theta_i, 0.0, 1.0), cp = std::clamp(cos_phi_i, 0.0, 1.0);
+  const int i = std::min(static_cast<int>(std::floor(grid * ct)), grid - 1);
+  const int j = std::min(static_cast<int>(std::floor(grid * cp)), grid - 1);
+  const auto hu = hermite(grid * ct - i), hv = hermite(grid * cp - j);
+  auto q = [&](int a, int b, double MaterialNode::*field) { return node(w, a, b).*field; };
+  // Finite-difference derivatives in index units (central inside, one-sided at the borders).
+  auto span = [&](int k) { return std::pair{std::max(k - 1, 0), std::min(k + 1, grid)}; };
+  MaterialNode out;
+  for (const auto field : kMaterialFields) {
+    double value = 0.0;
+    for (int a = 0; a < 2; ++a) {
+      for (int b = 0; b < 2; ++b) {
+        const int ni = i + a, nj = j + b;
+        const auto [i0, i1] = span(ni);
+        const auto [j0, j1] = span(nj);
+        const double f = q(ni, nj, field);
+        const double fu = (q(i1, nj, field) - q(i0, nj, field)) / (i1 - i0);
+        const double fv = (q(ni, j1, field) - q(ni, j0, field)) / (j1 - j0);
+        const double fuv = (q(i1, j1, field) + q(i0, j0, field) - q(i0, j1, field) - q(i1, j0, field)) /
+                           ((i1 - i0) * (j1 - j0));
+        value += hu[a] * hv[b] * f + hu[2 + a] * hv[b] * fu + hu[a] * hv[2 + b] * fv +
+                 hu[2 + a] * hv[2 + b] * fuv;
+      }
+    }
+    out.*field = value;
+  }
+  const double w_in = ct * cp;
+  out.f_eff = w_in > 0.0 ? std::max(out.f_eff, 0.0) / w_in : 0.0;
+  out.f_sta = w_in > 0.0 ? std::max(out.f_sta, 0.0) / w_in : 0.0;
+  out.m_eff = std::clamp(out.m_eff, 0.001, 1.0);
+  out.m_sta = std::clamp(out.m_sta, 0.001, 1.0);
+  out.phi_eff = std::clamp(out.phi_eff, -0.5 * kPi, 0.5 * kPi);
+  out.phi_sta = std::clamp(out.phi_sta, -0.5 * kPi, 0.5 * kPi);
+  out.pol_share = std::clamp(out.pol_share, 0.0, 1.0);
+  out.correlation = std::max(out.correlation, 0.0);
+  return out;
+}
+
+double FeatherMaterial::min_correlation_length() const {
+  double l = 1e300;
+  for (std::size_t w = 0; w < lambda_nm.size(); ++w) l = std::min(l, node(w, grid, grid).correlation * l0);
+  return lambda_nm.empty() ? 0.0 : l;
+}
+
+}  // namespace plumage
