@@ -1,0 +1,166 @@
+// FeatherMaterial file (.plm): binary, little-endian, versioned, FNV-1a checksummed, written
+// atomically. Layout: docs/formats.md, section "Feather material (.plm)".
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string_view>
+
+#include "plumage/atomic_file.hpp"
+#include "plumage/error.hpp"
+#include "plumage/feather_material.hpp"
+
+namespace plumage {
+
+namespace {
+
+constexpr char kMagic[8] = {'P', 'L', 'U', 'M', 'P', 'L', 'M', '\0'};
+constexpr std::size_t kMaxString = 1 << 16;
+
+std::uint64_t fnv1a(std::string_view bytes) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : bytes) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+struct Writer {
+  std::string bytes;
+  template <class T>
+  void put(T v) {
+    bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void put_string(const std::string& s) {
+    put<std::uint32_t>(static_cast<std::uint32_t>(s.size()));
+    bytes.append(s);
+  }
+};
+
+class Reader {
+ public:
+  Reader(const std::string& data, std::size_t end, const std::filesystem::path& file)
+      : data_(data), end_(end), file_(file) {}
+  template <class T>
+  T get() {
+    need(sizeof(T));
+    T v;
+    std::memcpy(&v, data_.data() + pos_, sizeof v);
+    pos_ += sizeof v;
+    return v;
+  }
+  std::string get_string(const char* field) {
+    const auto n = get<std::uint32_t>();
+    if (n > kMaxString) fail(std::string(field) + ": string of " + std::to_string(n) + " bytes is implausible");
+    need(n);
+    std::string s = data_.substr(pos_, n);
+    pos_ += n;
+    return s;
+  }
+  void need(std::size_t n) const {
+    if (pos_ + n > end_) fail("truncated feather material (at byte " + std::to_string(pos_) + ")");
+  }
+  [[noreturn]] void fail(const std::string& what) const { throw Error(file_.string() + ": " + what); }
+  std::size_t position() const { return pos_; }
+
+ private:
+  const std::string& data_;
+  std::size_t end_;
+  std::filesystem::path file_;
+  std::size_t pos_ = 0;
+};
+
+void check_material(const FeatherMaterial& m) {
+  const std::size_t per_bin = static_cast<std::size_t>(m.grid + 1) * static_cast<std::size_t>(m.grid + 1);
+  if (m.grid < 1) throw Error("feather material: grid must be >= 1");
+  if (m.lambda_nm.empty()) throw Error("feather material: no wavelength bins");
+  if (m.nodes.size() != per_bin * m.lambda_nm.size())
+    throw Error("feather material: " + std::to_string(m.nodes.size()) + " nodes, expected " +
+                std::to_string(per_bin * m.lambda_nm.size()));
+  if (m.noise.samples < 1 || m.noise.functions.size() % static_cast<std::size_t>(m.noise.samples) != 0)
+    throw Error("feather material: noise pool size is not a multiple of its sample count");
+}
+
+}  // namespace
+
+void write_feather_material(const std::filesystem::path& file, const FeatherMaterial& m) {
+  check_material(m);
+  Writer w;
+  w.bytes.append(kMagic, sizeof kMagic);
+  w.put<std::uint32_t>(FeatherMaterial::kFormatVersion);
+  w.put_string(m.label);
+  w.put_string(m.config_hash);
+  w.put_string(m.fidelity);
+  w.put<double>(m.sigma);
+  w.put<double>(m.l0);
+  w.put<double>(m.bin_width_nm);
+  w.put<std::int32_t>(m.grid);
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(m.lambda_nm.size()));
+  for (double l : m.lambda_nm) w.put<double>(l);
+  w.put<std::uint32_t>(kMaterialParameters);
+  for (const MaterialNode& n : m.nodes)
+    for (auto field : kMaterialFields) w.put<double>(n.*field);
+  w.put<std::int32_t>(m.noise.samples);
+  w.put<double>(m.noise.lag1);
+  w.put<std::uint32_t>(static_cast<std::uint32_t>(m.noise.count()));
+  w.bytes.append(reinterpret_cast<const char*>(m.noise.functions.data()), m.noise.functions.size() * sizeof(float));
+  w.put<std::uint64_t>(fnv1a(w.bytes));
+  write_file_atomically(file, [&](std::ostream& out) { out.write(w.bytes.data(), static_cast<std::streamsize>(w.bytes.size())); },
+                        /*binary=*/true);
+}
+
+FeatherMaterial read_feather_material(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error(file.string() + ": cannot open feather material");
+  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (data.size() < sizeof kMagic + 4 + 8 || std::memcmp(data.data(), kMagic, sizeof kMagic) != 0)
+    throw Error(file.string() + ": not a plumage feather material (bad magic)");
+  std::uint32_t version;
+  std::memcpy(&version, data.data() + sizeof kMagic, 4);
+  if (version != FeatherMaterial::kFormatVersion)
+    throw Error(file.string() + ": feather material version " + std::to_string(version) + ", this build reads " +
+                std::to_string(FeatherMaterial::kFormatVersion));
+  std::uint64_t stored;
+  std::memcpy(&stored, data.data() + data.size() - 8, 8);
+  if (stored != fnv1a(std::string_view(data).substr(0, data.size() - 8)))
+    throw Error(file.string() + ": checksum mismatch (corrupt or truncated feather material)");
+
+  Reader r(data, data.size() - 8, file);
+  (void)r.get<std::uint64_t>();  // magic
+  (void)r.get<std::uint32_t>();  // version
+  FeatherMaterial m;
+  m.label = r.get_string("label");
+  m.config_hash = r.get_string("config_hash");
+  m.fidelity = r.get_string("fidelity");
+  m.sigma = r.get<double>();
+  m.l0 = r.get<double>();
+  m.bin_width_nm = r.get<double>();
+  m.grid = r.get<std::int32_t>();
+  if (m.grid < 1 || m.grid > 1000) r.fail("grid: " + std::to_string(m.grid) + " outside [1, 1000]");
+  const auto bins = r.get<std::uint32_t>();
+  if (bins < 1 || bins > 100000) r.fail("wavelength bins: " + std::to_string(bins) + " outside [1, 100000]");
+  m.lambda_nm.resize(bins);
+  for (double& l : m.lambda_nm) l = r.get<double>();
+  const auto params = r.get<std::uint32_t>();
+  if (params != kMaterialParameters)
+    r.fail("parameters per node: " + std::to_string(params) + ", expected " + std::to_string(kMaterialParameters));
+  const std::size_t per_bin = static_cast<std::size_t>(m.grid + 1) * static_cast<std::size_t>(m.grid + 1);
+  r.need(per_bin * bins * kMaterialParameters * sizeof(double));
+  m.nodes.resize(per_bin * bins);
+  for (MaterialNode& n : m.nodes)
+    for (auto field : kMaterialFields) n.*field = r.get<double>();
+  m.noise.samples = r.get<std::int32_t>();
+  if (m.noise.samples < 1 || m.noise.samples > (1 << 20))
+    r.fail("noise samples: " + std::to_string(m.noise.samples) + " outside [1, 2^20]");
+  m.noise.lag1 = r.get<double>();
+  const auto count = r.get<std::uint32_t>();
+  const std::size_t values = static_cast<std::size_t>(count) * static_cast<std::size_t>(m.noise.samples);
+  r.need(values * sizeof(float));
+  m.noise.functions.resize(values);
+  std::memcpy(m.noise.functions.data(), data.data() + r.position(), values * sizeof(float));
+  if (r.position() + values * sizeof(float) + 8 != data.size()) r.fail("trailing bytes in feather material");
+  return m;
+}
+
+}  // namespace plumage

@@ -1,0 +1,83 @@
+// .plm round trip, checksum and error reporting (docs/formats.md "Feather material (.plm)").
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "plumage/error.hpp"
+#include "plumage/feather_material.hpp"
+
+using namespace plumage;
+
+namespace {
+
+FeatherMaterial sample_material() {
+  FeatherMaterial m;
+  m.label = "rockdove/forest";
+  m.config_hash = "0123abcd";
+  m.fidelity = "preview";
+  m.sigma = 0.04;
+  m.l0 = 0.0123;
+  m.grid = 4;
+  m.lambda_nm = {400, 406, 412};
+  m.nodes.resize(3 * 25);
+  for (std::size_t k = 0; k < m.nodes.size(); ++k) {
+    for (int p = 0; p < kMaterialParameters; ++p) m.nodes[k].*kMaterialFields[p] = 0.001 * k + 0.37 * p + 1e-17 * k;
+  }
+  m.noise.samples = 16;
+  m.noise.lag1 = 0.93;
+  for (int k = 0; k < 5 * 16; ++k) m.noise.functions.push_back(static_cast<float>(std::sin(0.7 * k)));
+  return m;
+}
+
+std::filesystem::path temp_file(const char* name) {
+  auto dir = std::filesystem::temp_directory_path() / "plumage-test-plm";
+  std::filesystem::create_directories(dir);
+  return dir / name;
+}
+
+}  // namespace
+
+TEST_CASE("feather material file: exact round trip", "[material][fit-io]") {
+  const FeatherMaterial m = sample_material();
+  const auto file = temp_file("round.plm");
+  write_feather_material(file, m);
+  const FeatherMaterial r = read_feather_material(file);
+  CHECK(r.label == m.label);
+  CHECK(r.config_hash == m.config_hash);
+  CHECK(r.fidelity == m.fidelity);
+  CHECK(r.sigma == m.sigma);
+  CHECK(r.l0 == m.l0);
+  CHECK(r.grid == m.grid);
+  CHECK(r.lambda_nm == m.lambda_nm);
+  CHECK(r.bin_width_nm == m.bin_width_nm);
+  REQUIRE(r.nodes.size() == m.nodes.size());
+  for (std::size_t k = 0; k < m.nodes.size(); ++k)
+    for (auto f : kMaterialFields) CHECK(r.nodes[k].*f == m.nodes[k].*f);
+  CHECK(r.noise.samples == 16);
+  CHECK(r.noise.lag1 == 0.93);
+  CHECK(r.noise.functions == m.noise.functions);
+}
+
+TEST_CASE("feather material file: corruption and bad input name the file", "[material][fit-io]") {
+  const auto file = temp_file("corrupt.plm");
+  write_feather_material(file, sample_material());
+  {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(100);
+    f.put('\x7f');
+  }
+  CHECK_THROWS_WITH(read_feather_material(file), Catch::Contains("corrupt.plm") && Catch::Contains("checksum"));
+  const auto size = std::filesystem::file_size(file);
+  std::filesystem::resize_file(file, size - 20);
+  CHECK_THROWS_WITH(read_feather_material(file), Catch::Contains("corrupt.plm"));
+  CHECK_THROWS_WITH(read_feather_material(temp_file("missing.plm")), Catch::Contains("missing.plm"));
+
+  // A material inconsistent with its grid is refused and nothing is written.
+  FeatherMaterial bad = sample_material();
+  bad.nodes.pop_back();
+  const auto target = temp_file("bad.plm");
+  std::filesystem::remove(target);
+  CHECK_THROWS_AS(write_feather_material(target, bad), Error);
+  CHECK_FALSE(std::filesystem::exists(target));
+}
