@@ -5,6 +5,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "plumage/reduced_regions.hpp"
@@ -16,10 +17,28 @@ namespace {
 
 const std::vector<std::string> kLayered{"rockdove", "starling", "bronzewing", "hummingbird"};
 
-// Innermost region containing p (−1: outside the body, in air).
-int region_at(const std::vector<Region>& regions, Vec2 p) {
+// Innermost region containing p (−1: outside the body, in air), with bounding boxes.
+struct Locator {
+  const std::vector<Region>& regions;
+  std::vector<std::array<double, 4>> box;
+  explicit Locator(const std::vector<Region>& r) : regions(r) {
+    for (const auto& g : regions) {
+      std::array<double, 4> b{1e300, -1e300, 1e300, -1e300};
+      for (const Vec2& v : g.outline) {
+        b[0] = std::min(b[0], v.x); b[1] = std::max(b[1], v.x);
+        b[2] = std::min(b[2], v.z); b[3] = std::max(b[3], v.z);
+      }
+      box.push_back(b);
+    }
+  }
+};
+
+int region_at(const Locator& loc, Vec2 p) {
+  const auto& regions = loc.regions;
   int best = -1, best_depth = -1;
   for (std::size_t r = 0; r < regions.size(); ++r) {
+    const auto& b = loc.box[r];
+    if (p.x < b[0] || p.x > b[1] || p.z < b[2] || p.z > b[3]) continue;
     if (!point_in_polygon(p, regions[r].outline)) continue;
     int depth = 0;
     for (int q = regions[r].parent; q >= 0; q = regions[static_cast<std::size_t>(q)].parent) ++depth;
@@ -65,6 +84,7 @@ struct Tally {
 // the profile at clean nodes; returns counts for reporting.
 Tally check_profiles(const CrossSection& cs, const std::vector<Region>& regions, std::size_t stride) {
   Tally tally;
+  const Locator locator(regions);
   for (std::size_t node = 1; node + 1 < cs.top.size(); node += stride) {
     const Vec2 p = cs.top[node];
     // Away from the ends (the last 10 % of the width on each side), where the approximate
@@ -85,7 +105,7 @@ Tally check_profiles(const CrossSection& cs, const std::vector<Region>& regions,
       depth = d1;
       if (layer.thickness_nm < 4.0) continue;
       for (double d : {d0 + 1.5, 0.5 * (d0 + d1), d1 - 1.5}) {
-        const int r = region_at(regions, p + d * inward);
+        const int r = region_at(locator, p + d * inward);
         INFO(cs.label << " instance " << cs.instance << " node " << node << " (x = " << p.x << " nm) layer "
                       << l << " of " << profile.layers.size() << " at depth " << d << " nm: profile "
                       << layer.material.name() << ", region " << r << " "
@@ -96,7 +116,7 @@ Tally check_profiles(const CrossSection& cs, const std::vector<Region>& regions,
       }
     }
     // Just past the bottom: the substrate (air under the barbule).
-    const int below = region_at(regions, p + (depth + 1.5) * inward);
+    const int below = region_at(locator, p + (depth + 1.5) * inward);
     if (profile.substrate.kind() == Material::Kind::air) CHECK(below == -1);
   }
   return tally;
