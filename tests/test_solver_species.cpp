@@ -194,9 +194,10 @@ TEST_CASE("mirror symmetry: a mirrored barbule mirrors its pattern", "[solver][s
                                 ApproximateSolver::Normalisation::lossless, {.chunked = false});
   for (const auto& s : layered_species()) {
     const CrossSection cs = s.structure->generate(3);
-    // The exact sum is symmetric to rounding; the chunked one (symmetric grid and chunks) to
-    // its interpolation error.
-    for (const auto& [solver, tolerance] : {std::pair{s.solver.get(), 1e-6},
+    // The exact sum is symmetric to rounding. The chunked one (symmetric grid and chunks) is
+    // symmetric to its interpolation error: each pattern is within 1e-5 (field, relative L2) of
+    // its exact sum (test above), so the two intensities differ by at most 2 · 2 · 1e-5.
+    for (const auto& [solver, tolerance] : {std::pair{s.solver.get(), 4e-5},
                                             std::pair{static_cast<const ScatteringSolver*>(&exact), 1e-9}}) {
       auto original = solver->prepare(cs, s.reflection);
       auto image = solver->prepare(mirror(cs), s.reflection);

@@ -28,8 +28,35 @@ struct PreparedTop final : ScatteringSolver::Prepared {
   std::vector<double> regularity;    // amplitude factor (crystals), else 1
   std::vector<double> segment_length;  // |v_{k+1} − v_k|
   std::vector<LayerProfile> profiles;
+  // Reflection sub-sampling (option `reflection_samples` K > 1): every segment split into K, the
+  // local reflection and the currents evaluated at each interior sub-vertex (own normal, own
+  // layer profile) and averaged over each node's tent support with the tent weights.
+  int samples = 1;
+  std::vector<Vec2> sample_normals;          // fine interior vertices 1 … (V−1)K − 1
+  std::vector<LayerProfile> sample_profiles;
   std::shared_ptr<const LocalReflection> reflection;
 };
+
+// Jones matrices for every incident azimuth at every node ([a·nodes + m]) or, when the
+// reflection is sub-sampled, at every sub-sample ([a·samples + f]).
+std::vector<JonesReflection> local_reflection(const PreparedTop& top, double lambda_nm, double theta_i_rad,
+                                              std::span<const double> phi_i_rad) {
+  const bool sub = top.samples > 1;
+  const std::vector<Vec2>& normals = sub ? top.sample_normals : top.normals;
+  const std::vector<LayerProfile>& profiles = sub ? top.sample_profiles : top.profiles;
+  const std::size_t points = normals.size();
+  std::vector<LocalReflection::Request> requests(points * phi_i_rad.size());
+  for (std::size_t a = 0; a < phi_i_rad.size(); ++a) {
+    for (std::size_t m = 0; m < points; ++m) {
+      const double psi = std::atan2(normals[m].x, normals[m].z);  // normal azimuth
+      requests[a * points + m] = {lambda_nm, {theta_i_rad, phi_i_rad[a] - psi},
+                                  profiles.empty() ? nullptr : &profiles[m]};
+    }
+  }
+  std::vector<JonesReflection> jones(requests.size());
+  top.reflection->reflect(requests, jones);
+  return jones;
+}
 
 Vec3 cross3(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
@@ -63,6 +90,65 @@ Complex far_field_prefactor(double k0, double gamma0) {
 // factor: the reference of the `lossless` normalisation. Where nothing is reflected (a
 // polarization at its Brewster angle) it falls back to a perfect conductor (a_s = −E_i·ŝ,
 // a_p = η0H_i·ŝ).
+// The Eq. 2 currents (J̃ = n̂ × η0H, M = −n̂ × E; incident phase factored out) of both
+// polarizations at a surface point with normal n̂ and local reflection r; false if the point
+// faces away from the light (within kGrazingCutoff of grazing or beyond).
+bool point_currents(const Vec2& normal, const Vec3& w_i, const JonesReflection& r,
+                    const PlaneWavePolarization (&pol)[2], bool with_incident, bool lossless,
+                    std::array<std::array<Complex, 6>, 2>& out) {
+  const Vec3 n{normal.x, 0.0, normal.z};
+  const double cos_a = dot3(w_i, n);
+  if (cos_a <= std::sin(kGrazingCutoff)) return false;
+  // Local s direction ŝ = ω_i × n̂/|…| (ŷ at exactly normal incidence), reflected direction
+  // ω_r = 2 cos α n̂ − ω_i, and r̂ = ω_r × ŝ (the reflected p-wave's E is −a_p r̂).
+  Vec3 s_hat = cross3(w_i, n);
+  const double s_len = std::sqrt(dot3(s_hat, s_hat));
+  s_hat = s_len < 1e-4 ? Vec3{0.0, 1.0, 0.0} : Vec3{s_hat[0] / s_len, s_hat[1] / s_len, s_hat[2] / s_len};
+  const Vec3 w_r{2 * cos_a * n[0] - w_i[0], 2 * cos_a * n[1] - w_i[1], 2 * cos_a * n[2] - w_i[2]};
+  const Vec3 r_hat = cross3(w_r, s_hat);
+  for (int p = 0; p < 2; ++p) {
+    const Vec3& e = pol[p].e;
+    const Vec3& h = pol[p].eta0_h;
+    const double c_e = dot3(e, s_hat), c_h = dot3(h, s_hat);
+    Complex a_s = r.ss * c_e + r.sp * c_h;
+    Complex a_p = r.ps * c_e + r.pp * c_h;
+    if (lossless) {
+      const double in = c_e * c_e + c_h * c_h, reflected = std::norm(a_s) + std::norm(a_p);
+      if (reflected > 1e-24 * in) {
+        const double scale = std::sqrt(in / reflected);
+        a_s *= scale, a_p *= scale;
+      } else {
+        a_s = -c_e, a_p = c_h;
+      }
+    }
+    CVec3 e_tot, h_tot;  // E and η0 H at the point, incident phase factored out
+    for (int c = 0; c < 3; ++c) {
+      e_tot[c] = a_s * s_hat[c] - a_p * r_hat[c];
+      h_tot[c] = a_s * r_hat[c] + a_p * s_hat[c];
+      if (with_incident) {
+        e_tot[c] += e[c];
+        h_tot[c] += h[c];
+      }
+    }
+    const CVec3 j = cross3(n, h_tot);
+    const CVec3 ne = cross3(n, e_tot);
+    for (int c = 0; c < 3; ++c) out[p][c] = j[c], out[p][3 + c] = -ne[c];
+  }
+  return true;
+}
+
+// Current amplitudes at every node for one incident direction, both polarizations: columns
+// [pol][J̃x J̃y J̃z Mx My Mz], times the window and the regularity, without the incident phase
+// (the kernel carries it); and the incident power Φ_i (Eq. 9). `jones` holds one matrix per
+// node, or per sub-sample when the solver sub-samples the reflection: then a node's currents are
+// the tent-weighted mean of its lit sub-samples' currents (each with its own normal and basis —
+// Jones matrices in different local bases cannot be averaged).
+//
+// With `lossless`, the reflected wave at every point keeps its polarization and phase but
+// carries all the incident power (|a_s|² + |a_p|² = |E_i·ŝ|² + |η0H_i·ŝ|²), without the
+// regularity factor: the reference of the `lossless` normalisation. Where nothing is reflected
+// (a polarization at its Brewster angle) it falls back to a perfect conductor (a_s = −E_i·ŝ,
+// a_p = η0H_i·ŝ).
 void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, const Vec3& w_i,
                      std::span<const JonesReflection> jones, bool with_incident, bool lossless,
                      Eigen::Ref<Eigen::MatrixXcd> amplitudes, std::array<double, 2>& incident_power) {
@@ -70,6 +156,8 @@ void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, 
                                         incident_polarization(1, incident)};
   amplitudes.setZero();
   incident_power = {0.0, 0.0};
+  const auto k = static_cast<std::size_t>(top.samples);
+  std::array<std::array<Complex, 6>, 2> point{};
   for (std::size_t m = 0; m < top.normals.size(); ++m) {
     const Vec3 n{top.normals[m].x, 0.0, top.normals[m].z};
     const double cos_a = dot3(w_i, n);
@@ -79,48 +167,30 @@ void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, 
       incident_power[0] += flux;
       incident_power[1] += flux;
     }
-    if (cos_a <= std::sin(kGrazingCutoff)) continue;
-    // Local s direction ŝ = ω_i × n̂/|…| (ŷ at exactly normal incidence), reflected direction
-    // ω_r = 2 cos α n̂ − ω_i, and r̂ = ω_r × ŝ (the reflected p-wave's E is −a_p r̂).
-    Vec3 s_hat = cross3(w_i, n);
-    const double s_len = std::sqrt(dot3(s_hat, s_hat));
-    s_hat = s_len < 1e-4 ? Vec3{0.0, 1.0, 0.0}
-                         : Vec3{s_hat[0] / s_len, s_hat[1] / s_len, s_hat[2] / s_len};
-    const Vec3 w_r{2 * cos_a * n[0] - w_i[0], 2 * cos_a * n[1] - w_i[1], 2 * cos_a * n[2] - w_i[2]};
-    const Vec3 r_hat = cross3(w_r, s_hat);
-    const JonesReflection& r = jones[m];
-    const double weight = top.window[m] * (lossless ? 1.0 : top.regularity[m]);
+    std::array<std::array<Complex, 6>, 2> sum{};
+    double weights = 0.0;
+    if (k == 1) {
+      if (point_currents(top.normals[m], w_i, jones[m], pol, with_incident, lossless, point)) sum = point, weights = 1.0;
+    } else {
+      // Node m is fine vertex (m + 1)K; its support spans fine vertices mK … (m + 2)K, i.e.
+      // sub-sample indices mK − 1 … (m + 2)K − 1, the two ends with weight 0.
+      for (std::size_t q = 1; q < 2 * k; ++q) {
+        const std::size_t f = m * k + q - 1;
+        if (!point_currents(top.sample_normals[f], w_i, jones[f], pol, with_incident, lossless, point)) continue;
+        // Trapezoid rule of ∫ Λ_m J dl: tent value times the sub-segment length of its side.
+        const double w = static_cast<double>(q <= k ? q : 2 * k - q) *
+                         (q <= k ? top.segment_length[m] : top.segment_length[m + 1]);
+        for (int p = 0; p < 2; ++p) {
+          for (int c = 0; c < 6; ++c) sum[p][c] += w * point[p][c];
+        }
+        weights += w;
+      }
+    }
+    if (!(weights > 0.0)) continue;
+    const double weight = top.window[m] * (lossless ? 1.0 : top.regularity[m]) / weights;
     const auto row = static_cast<Eigen::Index>(m);
     for (int p = 0; p < 2; ++p) {
-      const Vec3& e = pol[p].e;
-      const Vec3& h = pol[p].eta0_h;
-      const double c_e = dot3(e, s_hat), c_h = dot3(h, s_hat);
-      Complex a_s = r.ss * c_e + r.sp * c_h;
-      Complex a_p = r.ps * c_e + r.pp * c_h;
-      if (lossless) {
-        const double in = c_e * c_e + c_h * c_h, out = std::norm(a_s) + std::norm(a_p);
-        if (out > 1e-24 * in) {
-          const double scale = std::sqrt(in / out);
-          a_s *= scale, a_p *= scale;
-        } else {
-          a_s = -c_e, a_p = c_h;
-        }
-      }
-      CVec3 e_tot, h_tot;  // E and η0 H at the node, incident phase factored out
-      for (int c = 0; c < 3; ++c) {
-        e_tot[c] = a_s * s_hat[c] - a_p * r_hat[c];
-        h_tot[c] = a_s * r_hat[c] + a_p * s_hat[c];
-        if (with_incident) {
-          e_tot[c] += e[c];
-          h_tot[c] += h[c];
-        }
-      }
-      const CVec3 j = cross3(n, h_tot);
-      const CVec3 ne = cross3(n, e_tot);
-      for (int c = 0; c < 3; ++c) {
-        amplitudes(row, 6 * p + c) = weight * j[c];
-        amplitudes(row, 6 * p + 3 + c) = -weight * ne[c];
-      }
+      for (int c = 0; c < 6; ++c) amplitudes(row, 6 * p + c) = weight * sum[p][c];
     }
   }
 }
@@ -157,6 +227,25 @@ std::shared_ptr<const ScatteringSolver::Prepared> ApproximateSolver::prepare(
     auto all = layer_profiles(section);
     p->profiles.assign(all.begin() + 1, all.end() - 1);
   }
+  if (reflection_samples_ > 1) {
+    // The same polyline with every segment split into K: its interior vertices are the samples.
+    p->samples = reflection_samples_;
+    CrossSection fine = section;
+    fine.top.clear();
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      for (int q = 0; q < reflection_samples_; ++q) {
+        const double t = static_cast<double>(q) / reflection_samples_;
+        fine.top.push_back(section.top[k] + t * (section.top[k + 1] - section.top[k]));
+      }
+    }
+    fine.top.push_back(section.top.back());
+    const auto fine_normals = vertex_normals(fine.top);
+    p->sample_normals.assign(fine_normals.begin() + 1, fine_normals.end() - 1);
+    if (section.layered) {
+      auto all = layer_profiles(fine);
+      p->sample_profiles.assign(all.begin() + 1, all.end() - 1);
+    }
+  }
   return p;
 }
 
@@ -173,17 +262,8 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
   const double gamma0 = k0 * ct;  // transverse wavenumber in air
 
   // 1. Local reflection under every node, for every incident azimuth, in one batch.
-  std::vector<LocalReflection::Request> requests(nodes * n_phi);
-  for (std::size_t a = 0; a < n_phi; ++a) {
-    for (std::size_t m = 0; m < nodes; ++m) {
-      const double psi = std::atan2(top.normals[m].x, top.normals[m].z);  // normal azimuth
-      requests[a * nodes + m] = {lambda_nm,
-                                 {theta_i_rad, phi_i_rad[a] - psi},
-                                 top.profiles.empty() ? nullptr : &top.profiles[m]};
-    }
-  }
-  std::vector<JonesReflection> jones(requests.size());
-  top.reflection->reflect(requests, jones);
+  const std::vector<JonesReflection> jones = local_reflection(top, lambda_nm, theta_i_rad, phi_i_rad);
+  const std::size_t points = jones.size() / n_phi;  // nodes, or sub-samples
 
   // 2. Per azimuth: current amplitudes (Eq. 2, without the incident phase), then the far field
   // (radiation.hpp); with the `lossless` normalisation also the far field of the lossless
@@ -212,11 +292,11 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
     ff.lambda_nm = lambda_nm;
     ff.incident = incident;
     ff.phi_o_rad.assign(phi_o_rad.begin(), phi_o_rad.end());
-    fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * nodes, nodes),
+    fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * points, points),
                     with_incident, false, amplitudes.leftCols(12), ff.incident_power);
     std::array<double, 2> unused{};
     if (lossless) {
-      fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * nodes, nodes),
+      fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * points, points),
                       with_incident, true, amplitudes.rightCols(12), unused);
     }
     // Incident phase k_i·ρ = −k0 ω_i·ρ at every vertex; the kernel integrates it exactly.
@@ -257,14 +337,8 @@ ApproximateSolver::NodeCurrents ApproximateSolver::currents(const Prepared& prep
   const double k0 = wavenumber_per_nm(lambda_nm);
   const double ct = std::cos(incident.theta_rad);
   const double sp = std::sin(incident.phi_rad), cp = std::cos(incident.phi_rad);
-  std::vector<LocalReflection::Request> requests(nodes);
-  for (std::size_t m = 0; m < nodes; ++m) {
-    const double psi = std::atan2(top.normals[m].x, top.normals[m].z);
-    requests[m] = {lambda_nm, {incident.theta_rad, incident.phi_rad - psi},
-                   top.profiles.empty() ? nullptr : &top.profiles[m]};
-  }
-  std::vector<JonesReflection> jones(nodes);
-  top.reflection->reflect(requests, jones);
+  const double phi_i[1] = {incident.phi_rad};
+  const std::vector<JonesReflection> jones = local_reflection(top, lambda_nm, incident.theta_rad, phi_i);
   Eigen::MatrixXcd amplitudes(static_cast<Eigen::Index>(nodes), 12);
   NodeCurrents out;
   fill_amplitudes(top, incident, {ct * sp, std::sin(incident.theta_rad), ct * cp}, jones,
@@ -342,6 +416,8 @@ void register_approximate_solver(PluginRegistry& registry) {
                    "Gaussian window w(x) = exp(-x^2/s^2) with s = window_fraction * width"},
                   {"normalisation", "choice", "-", "lossless",
                    "lossless (power the same currents radiate with |r| set to 1 at every node) | eq9 (paper Eq. 9)"},
+                  {"reflection_samples", "integer", "-", "1",
+                   "local reflection averaged over this many sub-samples per segment (1: at the nodes only)"},
                   {"far_field", "choice", "-", "chunked",
                    "chunked (band-limited interpolation, ~1e-6 of exact) | exact (every node x direction)"}}},
       [](const ParamView& p, const PluginContext&) {
@@ -351,13 +427,14 @@ void register_approximate_solver(PluginRegistry& registry) {
         const auto far_field = p.choice_or("far_field", kFarFields, "chunked");
         detail::ChunkingOptions chunking;
         chunking.chunked = far_field == "chunked";
+        const int samples = static_cast<int>(p.integer_or("reflection_samples", 1, Limits::closed(1, 16)));
         return std::make_unique<ApproximateSolver>(
             currents == "reflected" ? ApproximateSolver::Currents::reflected
                                     : ApproximateSolver::Currents::incident_and_reflected,
             fraction,
             normalisation == "lossless" ? ApproximateSolver::Normalisation::lossless
                                       : ApproximateSolver::Normalisation::eq9,
-            chunking);
+            chunking, samples);
       });
 }
 

@@ -11,6 +11,9 @@
 // |                 |        |      |           | the same currents radiate into the cone with the    |
 // |                 |        |      |           | local reflectance set to 1 (phases and polarization |
 // |                 |        |      |           | kept); `eq9`: paper Eq. 9                           |
+// | reflection_samples | int | -    | 1         | local reflection averaged over K sub-samples per    |
+// |                 |        |      |           | segment, tent-weighted per node (stacks that change |
+// |                 |        |      |           | abruptly along the top, e.g. platelet ends)         |
 // | far_field       | choice | -    | chunked   | `chunked` (band-limited interpolation per chunk) or |
 // |                 |        |      |           | `exact` (every node × direction); radiation.hpp     |
 //
@@ -37,9 +40,9 @@ class ApproximateSolver final : public ScatteringSolver {
 
   ApproximateSolver(Currents currents, double window_fraction,
                     Normalisation normalisation = Normalisation::lossless,
-                    detail::ChunkingOptions chunking = {})
+                    detail::ChunkingOptions chunking = {}, int reflection_samples = 1)
       : currents_(currents), window_fraction_(window_fraction), normalisation_(normalisation),
-        chunking_(chunking) {}
+        chunking_(chunking), reflection_samples_(reflection_samples) {}
 
   std::shared_ptr<const Prepared> prepare(
       const CrossSection& section, std::shared_ptr<const LocalReflection> reflection) const override;
@@ -68,6 +71,7 @@ class ApproximateSolver final : public ScatteringSolver {
   double window_fraction_;
   Normalisation normalisation_;
   detail::ChunkingOptions chunking_;
+  int reflection_samples_;
 };
 
 // Registers "approximate" with the registry's built-in registrar.
