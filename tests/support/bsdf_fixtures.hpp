@@ -182,7 +182,7 @@ inline std::vector<double> adapted_edges(double lo, double hi, double c, double 
   for (int i = 1; i < n; ++i) {
     const double target = static_cast<double>(i) / n;
     double a = lo, b = hi;
-    for (int it = 0; it < 100; ++it) { const double mid = 0.5 * (a + b); (cdf(mid) < target ? a : b) = mid; }
+    for (int it = 0; it < 60; ++it) { const double mid = 0.5 * (a + b); (cdf(mid) < target ? a : b) = mid; }
     e.push_back(0.5 * (a + b));
   }
   e.push_back(hi);
@@ -252,15 +252,43 @@ inline std::vector<double> integrate_bins(const SphereBins& b, const std::functi
   return out;
 }
 
-// Directional albedo ∫_{H+} L dω of a lobe (independent of the sampling code): adapted bins
-// around the mirror direction of ω_eff.
+// Directional albedo ∫_{H+} L dω of a lobe, independent of the sampling code: the change of
+// variables ω_o = reflect(ω_eff, h) with h on the upper hemisphere covers the sphere once, and
+// dω_o = 4|ω_o·h| dω_h = 4|ω_o·h|/h_z dh_x dh_y. In (h_y, ξ = h_x/a(h_y)) the integrand has
+// separable peaks of widths σ and m (paper Eq. 17), so tensor Gauss–Legendre on edges adapted to
+// them converges quickly even for m = 0.001 at grazing incidence.
 inline double lobe_integral(const Lobe& lobe, double theta_i, int nbins = 32, int order = 4) {
   const Direction we = direction_from_angles(theta_i, lobe.phi_c_rad);
-  const Direction centre{-we.x, -we.y, we.z};
-  const double s_psi = std::max(1e-3, 2.0 * lobe.m / std::max(0.1, std::sqrt(1.0 - we.y * we.y)));
-  const SphereBins bins = lobe_bins(centre, 2.0 * lobe.sigma, s_psi, nbins, nbins, true);
+  if (!(we.z > 0.0)) return 0.0;
+  std::vector<double> gx, gw;
+  gauss_legendre(order, gx, gw);
+  const std::vector<double> ye = adapted_edges(-1.0, 1.0, 0.0, lobe.sigma / std::sqrt(2.0), false, nbins);
   double total = 0.0;
-  for (double v : integrate_bins(bins, [&](const Direction& w) { return lobe_value(lobe, theta_i, w); }, order)) total += v;
+  for (std::size_t iy = 0; iy + 1 < ye.size(); ++iy) {
+    const double y0 = ye[iy], dy = ye[iy + 1] - y0;
+    const double ymid = y0 + 0.5 * dy, rim_mid = std::sqrt(std::max(1e-12, 1.0 - ymid * ymid));
+    const std::vector<double> xe = adapted_edges(-1.0, 1.0, 0.0, std::max(lobe.m / rim_mid, 1e-6), true, nbins);
+    for (int a = 0; a < order; ++a) {
+      const double hy = y0 + gx[a] * dy;
+      const double rim = std::sqrt(std::max(0.0, 1.0 - hy * hy));
+      if (!(rim > 0.0)) continue;
+      double inner = 0.0;
+      for (std::size_t ix = 0; ix + 1 < xe.size(); ++ix) {
+        const double x0 = xe[ix], dx = xe[ix + 1] - x0;
+        for (int c = 0; c < order; ++c) {
+          const double hx = rim * (x0 + gx[c] * dx);
+          const double hz = std::sqrt(std::max(0.0, 1.0 - hx * hx - hy * hy));
+          if (!(hz > 0.0)) continue;
+          const Direction h{hx, hy, hz};
+          const double d = we.x * h.x + we.y * h.y + we.z * h.z;
+          const Direction wo{2 * d * h.x - we.x, 2 * d * h.y - we.y, 2 * d * h.z - we.z};
+          if (!(wo.z > 0.0)) continue;
+          inner += gw[c] * dx * lobe_value(lobe, theta_i, wo) * 4.0 * std::abs(d) / hz;
+        }
+      }
+      total += gw[a] * dy * inner * rim;
+    }
+  }
   return total;
 }
 

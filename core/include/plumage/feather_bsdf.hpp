@@ -21,11 +21,22 @@
 // Wavelength: floor binning λ → bin w (FeatherMaterial::wavelength_bin, spec §4.9 step 7); no
 // interpolation across bins.
 //
-// Energy (white furnace): the reflected directional albedo A_r(λ, ω_i) = ∫ f̄ cos dω is the
-// simulated reflected energy wherever the fitter's F_eff normalisation holds (paper Eq. 12).
-// The transmission albedo of bin w is T_w = min(requested, 1 − max A_r(w) − margin), the max
-// taken over every table node and cell centre of that bin; so A_r + T ≤ 1 at every table entry.
-// T_w does not depend on ω_i, so the transmission lobe T_w/π is reciprocal.
+// Energy (white furnace): the reflected directional albedo A_r(λ, ω_i) = ∫ f̄ cos dω equals the
+// simulated reflected energy E at the table nodes (the fitter's F_eff normalisation, paper
+// Eq. 12), but between nodes the interpolated F_eff·cos θ_i cos φ_i and m_eff need not keep
+// A_r ≤ 1 (measured: up to A_r = 2.3 in the first, grazing cell of a worst-case material,
+// +0.4 % between interior nodes; docs/validation.md "BSDF"). So, per wavelength bin w:
+//   * A_r is computed on a fine (cos θ_i, cos φ_i) table: the nodes, the edge midpoints and
+//     centres of every cell, and extra rows 1/8, 1/4, 3/4 of the way into the grazing cells;
+//     a fast estimate (Gauss–Legendre over the sampler's unit square, ≤ 2 % error) everywhere,
+//     replaced by the fitter's accurate hemisphere integral (fitter.hpp, the same rule as the
+//     Eq. 12 normalisation) wherever the budget may bind (within 0.05 of the cap);
+//   * the transmission albedo is T_w = min(requested, 1 − max_nodes A_r − margin), constant in
+//     ω_i (so the Lambertian transmission T_w/π is reciprocal);
+//   * the reflection (mean and statistics lobes alike, so instances stay unbiased) is scaled by
+//     min(1, (1 − T_w − margin)/A_r), A_r bilinear in the fine table. At the nodes the scale is
+//     1: the fitted BRDF is unchanged where it was fitted.
+// Hence A_r + T ≤ 1 at every table entry; between fine-table points up to the bilinear error.
 //
 // Deterministic: no hidden random state; sample() takes the caller's uniform numbers.
 // Thread-safe after construction (all methods const).
@@ -45,11 +56,11 @@ struct FeatherBsdfOptions {
   // Requested diffuse transmission albedo (fraction of the incident flux sent into the lower
   // hemisphere, Lambertian); reduced per wavelength bin where the reflection leaves less room.
   double transmission_albedo = 0.02;
-  // Stratified n × n estimate of A_r per table entry when computing T_w (and the reflection
-  // albedo estimate). 0 skips the pass (then T_w = 0).
-  int albedo_strata = 16;
-  // Safety margin of T_w against the estimator's error (measured error ≤ 2e-4 at n = 16 on the
-  // test materials, docs/validation.md "BSDF").
+  // n × n Gauss–Legendre estimate of A_r at each fine-table entry (energy budget above). 0
+  // skips the pass: then T_w = 0 and no reflection clamp.
+  int albedo_strata = 12;
+  // Margin of the energy budget (the accurate integral's error is ~1e-7; the margin keeps
+  // A_r + T visibly below 1 at the nodes).
   double albedo_margin = 1e-3;
 };
 
@@ -81,6 +92,7 @@ class FeatherBsdf {
     Lobe mean, stats;            // Eq. 16 and Eq. 20 lobes
     Direction w_eff;             // ω_eff (mirrored frame)
     bool reflects = false;       // the mean lobe is nonzero (F_eff > 0, ω_eff above the horizon)
+    double energy_scale = 1.0;   // reflection clamp (energy budget above), already in mean/stats
     double transmission = 0.0;   // T_w
     double p_transmit = 0.0;     // probability that sample() picks the transmission lobe
   };
@@ -110,8 +122,10 @@ class FeatherBsdf {
   // mean lobe; exact up to the stratification error).
   double reflection_albedo(const Incident& in, int strata) const;
   double transmission_albedo(std::size_t bin) const { return transmission_.empty() ? 0.0 : transmission_[bin]; }
-  // Largest estimated A_r over the table entries (nodes and cell centres) of a bin.
+  // Largest estimated A_r over the nodes of a bin (before the clamp).
   double max_reflection_albedo(std::size_t bin) const { return max_albedo_.empty() ? 0.0 : max_albedo_[bin]; }
+  // The fine (cos θ_i, cos φ_i) axis of the energy table (same for both cosines).
+  const std::vector<double>& energy_axis() const { return axis_; }
 
   // The noise value of one function of the pool at x (direction-cosine units), correlation
   // length l (spec §4.9 step 5): variance-preserving linear interpolation. Returns false where
@@ -120,11 +134,14 @@ class FeatherBsdf {
 
  private:
   void compute_energy_budget();  // feather_bsdf_energy.cpp
+  Incident raw_incident(std::size_t bin, double cos_theta, double cos_phi, const Direction& wi) const;
+  double energy_scale(std::size_t bin, double cos_theta, double cos_phi) const;
 
   std::shared_ptr<const FeatherMaterial> material_;
   FeatherBsdfOptions options_;
   double l_min_ = 0.0;
   std::vector<double> transmission_, max_albedo_, p_transmit_;
+  std::vector<double> axis_, albedo_table_;  // [bin][cos θ_i][cos φ_i] on axis_ × axis_
 };
 
 }  // namespace plumage

@@ -39,6 +39,24 @@ FeatherBsdf::Incident FeatherBsdf::incident(double lambda_nm, const Direction& w
 }
 
 FeatherBsdf::Incident FeatherBsdf::incident_bin(std::size_t bin, const Direction& wi) const {
+  if (wi.z == 0.0) {
+    Incident in;
+    in.bin = bin;
+    return in;
+  }
+  const double ct = std::min(1.0, std::sqrt(wi.x * wi.x + wi.z * wi.z));
+  const double cp = ct > 0.0 ? std::min(1.0, std::abs(wi.z) / ct) : 0.0;
+  Incident in = raw_incident(bin, ct, cp, wi);
+  in.energy_scale = energy_scale(bin, ct, cp);
+  in.mean.scale *= in.energy_scale;
+  in.stats.scale *= in.energy_scale;
+  in.transmission = transmission_albedo(bin);
+  in.p_transmit = in.reflects ? (p_transmit_.empty() ? 0.0 : p_transmit_[bin]) : (in.transmission > 0.0 ? 1.0 : 0.0);
+  return in;
+}
+
+// Lookup and symmetry only (spec §4.9 steps 1–2): no energy clamp, no transmission.
+FeatherBsdf::Incident FeatherBsdf::raw_incident(std::size_t bin, double ct, double cp, const Direction& wi) const {
   Incident in;
   in.bin = bin;
   if (wi.z == 0.0) return in;
@@ -46,18 +64,13 @@ FeatherBsdf::Incident FeatherBsdf::incident_bin(std::size_t bin, const Direction
   in.mirror_x = wi.x < 0.0 ? -1.0 : 1.0;  // φ_i < 0 (spec §4.9 step 1)
   in.mirror_y = wi.y < 0.0 ? -1.0 : 1.0;  // θ_i < 0
   in.wi_x_world = wi.x;
-  const Direction w = to_local(in, wi);
-  const double ct = std::min(1.0, std::sqrt(w.x * w.x + w.z * w.z));
-  const double cp = ct > 0.0 ? std::min(1.0, w.z / ct) : 0.0;
-  in.theta_abs = std::atan2(w.y, ct);
+  in.theta_abs = std::atan2(std::abs(wi.y), ct);
   in.p = material_->lookup(bin, ct, cp);
   const double sigma = material_->sigma;
   in.mean = Lobe{in.p.m_eff, in.p.phi_eff, sigma, in.p.f_eff};
   in.stats = Lobe{in.p.m_sta, in.p.phi_sta, sigma, in.p.f_sta};
   in.w_eff = lobe::effective_incident(in.theta_abs, in.p.phi_eff);
   in.reflects = in.p.f_eff > 0.0 && in.w_eff.z > 0.0;
-  in.transmission = transmission_albedo(bin);
-  in.p_transmit = in.reflects ? (p_transmit_.empty() ? 0.0 : p_transmit_[bin]) : (in.transmission > 0.0 ? 1.0 : 0.0);
   in.valid = true;
   return in;
 }
