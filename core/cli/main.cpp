@@ -8,6 +8,8 @@
 
 namespace plumage::cli {
 void add_compare_command(CLI::App& app, AppContext& context);  // cmd_compare.cpp
+void add_characterize_command(CLI::App& app, AppContext& context);  // cmd_characterize.cpp
+void add_merge_command(CLI::App& app, AppContext& context);         // cmd_merge.cpp
 }
 
 int main(int argc, char** argv) {
@@ -31,6 +33,8 @@ int main(int argc, char** argv) {
   add_geometry_command(app, context);
   add_table_command(app, context);
   add_compare_command(app, context);
+  add_characterize_command(app, context);
+  add_merge_command(app, context);
 
   try {
     app.parse(argc, argv);

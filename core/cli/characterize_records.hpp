@@ -1,0 +1,84 @@
+// Work records of `plumage characterize`: one record per (λ bin w, cos θ_i row a) group holding
+// the fitted node of every cos φ_i column b = 1 … G (and, for the reference group, the noise
+// autocorrelation). Records are what journals, shard files and MPI messages carry; a material is
+// assembled from a complete set of them, so every way of running gives the same bytes.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "plumage/feather_material.hpp"
+
+namespace plumage::cli {
+
+struct UnitRecord {
+  MaterialNode node;  // correlation = absolute l (not yet divided by l0)
+  double rel_l2_eff = 0, rel_l2_sta = 0, energy = 0;
+};
+
+struct GroupRecord {
+  std::uint32_t w = 0, a = 0;          // λ bin, cos θ_i = a / G
+  std::vector<UnitRecord> units;       // b = 1 … G
+  std::vector<double> autocorrelation; // reference group only (first bin, a = G: unit b = G)
+};
+
+// What a characterisation depends on; two runs (or shards) combine only if these agree.
+struct CharacterizeSettings {
+  std::string label;        // species/variant
+  std::string config_hash;
+  std::string variant;
+  std::string fidelity;
+  int instances = 0;
+  int grid = 0;
+  std::vector<double> lambda_nm;
+  double bin_width_nm = 6.0;
+  int pattern_samples = 400, projected_samples = 1024;
+  double jitter_deg = 2.0;
+  double sigma = 0.04;
+  int noise_functions = 512;
+
+  std::size_t group_count() const { return lambda_nm.size() * static_cast<std::size_t>(grid); }
+  std::string fingerprint() const;  // one line, exact (hex floats)
+  // The inverse of fingerprint() (plumage merge rebuilds the settings from shard headers).
+  static CharacterizeSettings from_fingerprint(const std::string& line);
+};
+
+std::string serialize(const GroupRecord& r);
+
+// A journal or shard file: a two-line text header (magic, fingerprint) and appended records,
+// each with its own checksum. Reading stops at the first incomplete or corrupt record (a run
+// killed while appending) and reports the byte offset where valid data end.
+struct JournalContents {
+  std::string fingerprint;
+  std::vector<GroupRecord> records;
+  std::uintmax_t valid_bytes = 0;
+};
+JournalContents read_journal(const std::filesystem::path& file);
+std::string journal_header(const CharacterizeSettings& s);
+
+// Appends records, flushed and fsync'ed after each so a kill loses at most the record in flight.
+class JournalWriter {
+ public:
+  // Opens (creating with a header, or truncating a torn tail to `valid_bytes`).
+  JournalWriter(const std::filesystem::path& file, const CharacterizeSettings& s, std::uintmax_t valid_bytes);
+  ~JournalWriter();
+  JournalWriter(const JournalWriter&) = delete;
+  JournalWriter& operator=(const JournalWriter&) = delete;
+  void append(const GroupRecord& r);
+
+ private:
+  int fd_ = -1;
+  std::filesystem::path file_;
+};
+
+// The material from a complete set of records (one per group; identical duplicates allowed).
+FeatherMaterial assemble_material(const CharacterizeSettings& s, const std::vector<GroupRecord>& records);
+
+// Relative L2 fit-error summary over all units of the records (docs/validation.md "Fitting").
+std::string fit_quality_summary(const CharacterizeSettings& s, const std::vector<GroupRecord>& records);
+
+}  // namespace plumage::cli

@@ -1,0 +1,331 @@
+// `plumage characterize CONFIG --fidelity preview|production --out x.plm`: geometry → simulate →
+// fit every work unit (spec geometry-and-brdf §4.1–4.6) → assemble the FeatherMaterial (§4.7–4.8).
+//
+// Work is scheduled in groups (λ bin w, cos θ_i = a/G): one solve() per instance serves all G
+// azimuths cos φ_i = b/G of the group (each instance with its azimuth jitter, spec §0.3), then the
+// G units are fitted in parallel. Prepared instances are reused by every group. Each finished
+// group is appended to a journal beside the output (fsync'ed), so a killed run resumes with only
+// the groups in flight redone. `--shard i/N` and MPI ranks take the groups g ≡ i−1 (mod N);
+// the material is assembled from the records alone, so every way of running writes the same bytes.
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cmath>
+#include <ctime>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "bench_record.hpp"
+#include "characterize_records.hpp"
+#include "chart.hpp"
+#include "commands.hpp"
+#include "grid_parse.hpp"
+#include "mpi_session.hpp"
+#include "plumage/atomic_file.hpp"
+#include "plumage/fitter.hpp"
+#include "plumage/species_config.hpp"
+#include "progress.hpp"
+
+namespace plumage::cli {
+
+namespace {
+
+struct Options {
+  std::string config, variant, fidelity = "preview", out, shard, diagnostics, lambda_nm, record;
+  int instances = 0, grid = 0, noise_functions = 0;
+  double sigma = 0.04;
+};
+
+// Fidelity presets. production: the spec's grid (config simulation settings: 50 λ, 20 × 20,
+// 50 instances). preview: 10 instances, λ = 400, 430, …, 670 nm (10 bins of 30 nm), 10 × 10
+// incident nodes; same direction sampling and fits.
+CharacterizeSettings make_settings(const SpeciesConfig& config, const Options& o) {
+  CharacterizeSettings s;
+  s.label = config.species + "/" + config.variant;
+  s.config_hash = config.content_hash;
+  s.variant = config.variant;
+  s.fidelity = o.fidelity;
+  const auto& sim = config.simulation;
+  s.pattern_samples = sim.pattern_samples;
+  s.projected_samples = sim.projected_samples;
+  s.jitter_deg = sim.azimuth_jitter_deg;
+  s.sigma = o.sigma;
+  s.noise_functions = 512;
+  if (o.fidelity == "production") {
+    s.instances = sim.instances;
+    s.grid = sim.incident_grid;
+    s.lambda_nm = sim.wavelengths_nm;
+  } else {
+    s.instances = 10;
+    s.grid = 10;
+    for (int k = 0; k < 10; ++k) s.lambda_nm.push_back(400.0 + 30.0 * k);
+  }
+  if (o.instances > 0) s.instances = o.instances;
+  if (o.grid > 0) s.grid = o.grid;
+  if (o.noise_functions > 0) s.noise_functions = o.noise_functions;
+  if (!o.lambda_nm.empty()) s.lambda_nm = parse_samples(o.lambda_nm, "--lambda-nm");
+  if (s.instances < 2) throw UsageError("--instances: at least 2 (the statistics need a variance)");
+  if (s.grid < 2) throw UsageError("--grid: at least 2 incident nodes per axis");
+  if (s.lambda_nm.empty()) throw UsageError("no wavelengths");
+  for (std::size_t k = 0; k < s.lambda_nm.size(); ++k) {
+    if (!(s.lambda_nm[k] > 0) || (k && s.lambda_nm[k] <= s.lambda_nm[k - 1]))
+      throw UsageError("--lambda-nm: wavelengths must be positive and ascending");
+  }
+  s.bin_width_nm = s.lambda_nm.size() > 1 ? s.lambda_nm[1] - s.lambda_nm[0] : 6.0;
+  return s;
+}
+
+double jitter_rad(int n, int count, double jitter_deg) {
+  if (count < 2 || jitter_deg == 0.0) return 0.0;
+  return deg_to_rad(-jitter_deg + 2.0 * jitter_deg * n / (count - 1));
+}
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  int i = 0, n = 0;
+  char slash = 0;
+  std::istringstream in(text);
+  if (!(in >> i >> slash >> n) || slash != '/' || !in.eof() || n < 1 || i < 1 || i > n)
+    throw UsageError("--shard: expected i/N with 1 <= i <= N (e.g. 2/8), got '" + text + "'");
+  return {i - 1, n};
+}
+
+struct DiagnosticUnit {
+  std::uint32_t w, a, b;
+  std::vector<double> phi_o, u, fit;
+  double rel_l2 = 0;
+};
+
+// One group: far fields of every instance for all G azimuths, then the G fits.
+GroupRecord run_group(const SpeciesConfig& config, const CharacterizeSettings& s,
+                      const std::vector<std::shared_ptr<const ScatteringSolver::Prepared>>& prepared,
+                      std::size_t g, std::vector<DiagnosticUnit>* diagnostics) {
+  GroupRecord rec;
+  rec.w = static_cast<std::uint32_t>(g / static_cast<std::size_t>(s.grid));
+  rec.a = static_cast<std::uint32_t>(g % static_cast<std::size_t>(s.grid)) + 1;
+  const double lambda = s.lambda_nm[rec.w];
+  const double theta = std::acos(static_cast<double>(rec.a) / s.grid);
+  std::vector<double> phi_i(static_cast<std::size_t>(s.grid));
+  for (int b = 1; b <= s.grid; ++b) phi_i[b - 1] = std::acos(static_cast<double>(b) / s.grid);
+  const DirectionSet pattern = pattern_directions(s.pattern_samples);
+  const DirectionSet projected = projected_directions(theta, s.projected_samples);
+  std::vector<double> phi_o = pattern.phi_o_rad;
+  phi_o.insert(phi_o.end(), projected.phi_o_rad.begin(), projected.phi_o_rad.end());
+
+  // per_b[b][n]: far field of instance n at azimuth b.
+  std::vector<std::vector<FarField>> per_b(phi_i.size(), std::vector<FarField>(static_cast<std::size_t>(s.instances)));
+  tbb::parallel_for(0, s.instances, [&](int n) {
+    std::vector<double> phis = phi_i;
+    const double d = jitter_rad(n, s.instances, s.jitter_deg);
+    for (double& p : phis) p += d;
+    auto fields = config.solver->solve(*prepared[n], lambda, theta, phis, phi_o);
+    for (std::size_t b = 0; b < fields.size(); ++b) per_b[b][n] = std::move(fields[b]);
+  });
+  rec.units.resize(phi_i.size());
+  std::vector<UnitFit> fits(phi_i.size());
+  const bool reference = rec.w == 0 && rec.a == static_cast<std::uint32_t>(s.grid);
+  tbb::parallel_for(std::size_t{0}, phi_i.size(), [&](std::size_t b) {
+    UnitInput in;
+    in.lambda_nm = lambda;
+    in.theta_i_rad = theta;
+    in.phi_i_rad = phi_i[b];
+    in.sigma = s.sigma;
+    in.pattern_count = pattern.phi_o_rad.size();
+    in.instances = per_b[b];
+    in.want_autocorrelation = reference && b + 1 == phi_i.size();
+    fits[b] = fit_unit(in);
+  });
+  for (std::size_t b = 0; b < fits.size(); ++b) {
+    rec.units[b] = {fits[b].node, fits[b].rel_l2_eff, fits[b].rel_l2_sta, fits[b].energy};
+    if (!fits[b].autocorrelation.empty()) rec.autocorrelation = fits[b].autocorrelation;
+  }
+  if (diagnostics) {
+    for (auto& d : *diagnostics) {
+      if (d.w == rec.w && d.a == rec.a) {
+        d.phi_o = pattern.phi_o_rad;
+        d.u = fits[d.b - 1].mean_pattern;
+        d.fit = fits[d.b - 1].fit_pattern;
+        d.rel_l2 = fits[d.b - 1].rel_l2_eff;
+      }
+    }
+  }
+  return rec;
+}
+
+std::vector<DiagnosticUnit> diagnostic_units(const CharacterizeSettings& s) {
+  std::uint32_t w = 0;
+  for (std::size_t k = 0; k < s.lambda_nm.size(); ++k)
+    if (std::abs(s.lambda_nm[k] - 550) < std::abs(s.lambda_nm[w] - 550)) w = static_cast<std::uint32_t>(k);
+  const auto G = static_cast<std::uint32_t>(s.grid), h = std::max<std::uint32_t>(1, G / 2), q = std::max<std::uint32_t>(1, G / 4);
+  return {{w, G, G, {}, {}, {}, 0}, {w, G, h, {}, {}, {}, 0}, {w, h, G, {}, {}, {}, 0}, {w, q, q, {}, {}, {}, 0}};
+}
+
+void write_diagnostics(const std::filesystem::path& dir, const CharacterizeSettings& s,
+                       const std::vector<DiagnosticUnit>& units, const std::string& summary) {
+  std::filesystem::create_directories(dir);
+  LineChart chart;
+  chart.title = s.label + ": simulated mean pattern U vs GGX fit on the cone (" + s.fidelity + ")";
+  chart.x_label = "phi_o (deg)";
+  chart.y_label = "reflectance density per rad";
+  std::ostringstream csv;
+  csv << std::setprecision(9) << "lambda_nm,cos_theta_i,cos_phi_i,phi_o_deg,mean_U,fit\n";
+  for (const auto& d : units) {
+    if (d.u.empty()) continue;  // computed by an earlier (resumed) run or another shard
+    std::ostringstream panel;
+    panel << std::setprecision(3) << s.lambda_nm[d.w] << " nm, cos th_i " << double(d.a) / s.grid << ", cos ph_i "
+          << double(d.b) / s.grid << " (rel. L2 " << d.rel_l2 << ")";
+    for (std::size_t k = 0; k < d.u.size(); ++k) {
+      chart.points.push_back({panel.str(), "simulated U", rad_to_deg(d.phi_o[k]), d.u[k]});
+      chart.points.push_back({panel.str(), "GGX fit", rad_to_deg(d.phi_o[k]), d.fit[k]});
+      csv << s.lambda_nm[d.w] << ',' << double(d.a) / s.grid << ',' << double(d.b) / s.grid << ','
+          << rad_to_deg(d.phi_o[k]) << ',' << d.u[k] << ',' << d.fit[k] << '\n';
+    }
+  }
+  write_text_atomically(dir / "fit-patterns.csv", csv.str());
+  write_text_atomically(dir / "fit-summary.txt", summary + "\n");
+  if (!chart.points.empty()) draw_line_chart(chart, dir / "fit-patterns.png");
+}
+
+void run(AppContext& context, const Options& o) {
+  MpiSession mpi;
+  const bool root = mpi.rank() == 0;
+  try {
+    if (mpi.size() > 1 && !o.shard.empty()) throw UsageError("--shard and an MPI launch cannot be combined");
+    const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
+    if (!config.structure) throw UsageError(o.config + ": no `structure:` section to characterise");
+    const CharacterizeSettings s = make_settings(config, o);
+    auto [part, parts] = o.shard.empty() ? std::pair<int, int>{mpi.rank(), mpi.size()} : parse_shard(o.shard);
+    const std::filesystem::path out(o.out);
+    std::filesystem::path journal = out;
+    journal += mpi.size() > 1 ? ".rank" + std::to_string(part) + "of" + std::to_string(parts) + ".journal" : ".journal";
+
+    // Resume: groups already in the journal are not recomputed.
+    std::set<std::size_t> done;
+    std::uintmax_t valid = 0;
+    if (std::filesystem::exists(journal)) {
+      const JournalContents j = read_journal(journal);
+      if (j.fingerprint != s.fingerprint())
+        throw UsageError(journal.string() + ": journal of a run with other settings; delete it to start over\n  journal:  " +
+                         j.fingerprint + "\n  this run: " + s.fingerprint());
+      for (const auto& r : j.records) done.insert(r.w * static_cast<std::size_t>(s.grid) + (r.a - 1));
+      valid = j.valid_bytes;
+    }
+    std::vector<std::size_t> todo;
+    for (std::size_t g = 0; g < s.group_count(); ++g)
+      if (static_cast<int>(g % static_cast<std::size_t>(parts)) == part && !done.count(g)) todo.push_back(g);
+    const bool quiet = context.quiet || !root;
+    if (!quiet) {
+      std::cerr << s.label << ": " << s.fidelity << ", " << s.lambda_nm.size() << " wavelengths x " << s.grid << " x "
+                << s.grid << " incident nodes, " << s.instances << " instances";
+      if (parts > 1) std::cerr << (mpi.size() > 1 ? ", rank 1 of " : ", shard ") << part + 1 << "/" << parts;
+      if (!done.empty()) std::cerr << ", resuming (" << done.size() << " groups already in " << journal.string() << ")";
+      std::cerr << "\n";
+    }
+
+    const auto wall0 = std::chrono::steady_clock::now();
+    const std::clock_t cpu0 = std::clock();
+    std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepared(static_cast<std::size_t>(s.instances));
+    if (!todo.empty()) {
+      tbb::parallel_for(0, s.instances, [&](int n) {
+        const CrossSection cs = config.structure->generate(static_cast<std::uint64_t>(n));
+        prepared[n] = config.solver->prepare(cs, config.reflection);
+      });
+    }
+    auto diag = diagnostic_units(s);
+    {
+      JournalWriter writer(journal, s, valid);
+      Progress progress("work units", todo.size() * static_cast<std::size_t>(s.grid), quiet);
+      std::size_t count = 0;
+      for (std::size_t g : todo) {
+        writer.append(run_group(config, s, prepared, g, o.diagnostics.empty() ? nullptr : &diag));
+        progress.advance(++count * static_cast<std::size_t>(s.grid));
+      }
+    }
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+
+    // Everything this part owns, read back from its journal (the bytes that shards and ranks ship).
+    JournalContents mine = read_journal(journal);
+    if (!o.shard.empty()) {
+      std::filesystem::rename(journal, out);  // a complete shard file
+      if (!quiet) std::cerr << "wrote shard " << out.string() << " (" << mine.records.size() << " groups); combine with `plumage merge`\n";
+      return;
+    }
+    std::string bytes;
+    for (const auto& r : mine.records) bytes += serialize(r);
+    const auto all = mpi.gather(bytes);
+    bool ok = true;
+    if (root) {
+      std::vector<GroupRecord> records;
+      for (const std::string& part_bytes : all) {
+        // Parse the shipped records through the journal reader (same checks).
+        const std::filesystem::path tmp = std::filesystem::path(out).concat(".gather.tmp");
+        {
+          std::ofstream f(tmp, std::ios::binary);
+          f << journal_header(s) << part_bytes;
+        }
+        auto j = read_journal(tmp);
+        std::filesystem::remove(tmp);
+        for (auto& r : j.records) records.push_back(std::move(r));
+      }
+      const FeatherMaterial material = assemble_material(s, records);
+      write_feather_material(out, material);
+      const std::string summary = fit_quality_summary(s, records);
+      if (!o.diagnostics.empty()) write_diagnostics(o.diagnostics, s, diag, summary);
+      if (!context.quiet) {
+        std::cerr << summary << "\n";
+        std::cerr << "wrote " << out.string() << " (" << std::filesystem::file_size(out) << " bytes) in " << std::fixed
+                  << std::setprecision(1) << wall << " s wall, " << cpu << " s CPU (this process"
+                  << (mpi.size() > 1 ? ", rank 0" : "") << ", " << todo.size() << " groups computed)\n";
+      }
+      if (!o.record.empty()) {
+        std::ostringstream md;
+        md << "## characterize " << s.label << " (" << s.fidelity << ")\n\n"
+           << s.lambda_nm.size() << " wavelengths x " << s.grid << " x " << s.grid << " incident nodes, " << s.instances
+           << " instances, " << s.pattern_samples << " pattern + " << s.projected_samples << " projected directions.\n\n"
+           << "| machine | command | date | wall | CPU | groups computed | file size |\n|---|---|---|---|---|---|---|\n"
+           << "| " << machine_description() << " | `plumage characterize " << o.config << " --variant " << s.variant
+           << " --fidelity " << s.fidelity << "` | " << today_iso() << " | " << std::setprecision(0) << wall << " s | "
+           << cpu << " s | " << todo.size() << " of " << s.group_count() << " | "
+           << std::setprecision(2) << std::filesystem::file_size(out) / 1e6 << " MB |\n\n" << summary << "\n";
+        record_benchmark(o.record, "characterize:" + config.species + "-" + config.variant + ":" + s.fidelity, md.str());
+      }
+    }
+    ok = mpi.broadcast(ok);
+    if (ok) std::filesystem::remove(journal);
+  } catch (const std::exception& e) {
+    if (mpi.active()) {
+      std::cerr << "rank " << mpi.rank() << ": " << e.what() << "\n";
+      mpi.abort(dynamic_cast<const UsageError*>(&e) ? 2 : 1);
+    }
+    throw;
+  }
+}
+
+}  // namespace
+
+void add_characterize_command(CLI::App& app, AppContext& context) {
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("characterize", "Simulate and fit a species variant into a feather material (.plm)");
+  cmd->add_option("config", o->config, "Species YAML file")->required();
+  cmd->add_option("--variant", o->variant, "Variant (default: the file's)");
+  cmd->add_option("--fidelity", o->fidelity,
+                  "preview: 10 lambda x 10 x 10 nodes, 10 instances; production: the config's grid (50 x 20 x 20, 50 instances)")
+      ->check(CLI::IsMember({"preview", "production"}))
+      ->capture_default_str();
+  cmd->add_option("--out", o->out, "Material file to write (.plm), or the shard file with --shard")->required();
+  cmd->add_option("--shard", o->shard, "Compute only shard i of N (1-based, i/N); combine with `plumage merge`");
+  cmd->add_option("--instances", o->instances, "Override the preset's instance count");
+  cmd->add_option("--grid", o->grid, "Override the preset's incident nodes per axis");
+  cmd->add_option("--lambda-nm", o->lambda_nm, "Override the preset's wavelengths (ascending list or range)");
+  cmd->add_option("--noise-functions", o->noise_functions, "Noise pool size (default 512)");
+  cmd->add_option("--sigma", o->sigma, "D_y spread of the lobes (spec 4.3)")->capture_default_str();
+  cmd->add_option("--diagnostics", o->diagnostics, "Folder for pattern-vs-fit pictures and the fit-quality summary");
+  cmd->add_option("--record", o->record, "Record the timing in this benchmarks markdown file");
+  cmd->callback([&context, o] { run(context, *o); });
+}
+
+}  // namespace plumage::cli
