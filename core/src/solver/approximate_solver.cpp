@@ -417,9 +417,9 @@ void register_approximate_solver(PluginRegistry& registry) {
                   {"normalisation", "choice", "-", "lossless",
                    "lossless (power the same currents radiate with |r| set to 1 at every node) | eq9 (paper Eq. 9)"},
                   {"reflection_samples", "integer", "-", "1",
-                   "local reflection averaged over this many sub-samples per segment (1: at the nodes only)"},
+                   "local reflection and currents at this many sub-samples per segment, tent-weighted per node (1: nodes only)"},
                   {"far_field", "choice", "-", "chunked",
-                   "chunked (band-limited interpolation, ~1e-6 of exact) | exact (every node x direction)"}}},
+                   "chunked (band-limited interpolation, <= 1e-5 of exact) | exact (every node x direction)"}}},
       [](const ParamView& p, const PluginContext&) {
         const auto currents = p.choice_or("currents", kCurrents, "reflected");
         const double fraction = p.number_or("window_fraction", 0.25, Limits::positive());
