@@ -248,6 +248,9 @@ TEST_CASE("plumage simulate --directions full", "[cli][compare]") {
         total[pol - 1] += got * M_PI / 180.0;
       }
       INFO("theta_i " << theta_deg << " deg, pol " << pol);
+      WARN("bem keratin cylinder r = 250 nm, 550 nm, theta_i " << theta_deg << " deg, pol " << pol
+           << ": dsigma/dphi relative L2 to the series " << std::sqrt(diff2[pol - 1] / ref2[pol - 1])
+           << ", C_sca " << total[pol - 1] << " nm vs " << s.q_sca * 500.0 << " nm");
       CHECK(std::sqrt(diff2[pol - 1] / ref2[pol - 1]) < 1e-2);
       // Its integral over the circle is the scattering width C_sca = Q_sca · 2a.
       CHECK(total[pol - 1] == Approx(s.q_sca * 500.0).epsilon(1e-2));
