@@ -56,16 +56,41 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
                 std::to_string(static_cast<long>(n * n * 16 / 1e9 + 0.5)) +
                 " GB); the fast (GMRES) solver is not implemented yet — simulate a narrower segment");
   }
-  if (options.method == BemOptions::Method::gmres) {
-    throw Error("bem: method gmres is not implemented yet (use method: dense)");
-  }
   auto t0 = std::chrono::steady_clock::now();
-  Eigen::MatrixXcd Z = assemble_dense(sys->mesh, sys->media, sys->k0, sys->beta, options.quadrature);
+  sys->Z = assemble_dense(sys->mesh, sys->media, sys->k0, sys->beta, options.quadrature);
   sys->assembly_seconds = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
-  sys->lu.compute(Z);
+  if (options.method == BemOptions::Method::gmres) {
+    if (options.preconditioner_group > 0) {
+      sys->precond = std::make_unique<BlockJacobi>(sys->mesh, sys->Z, options.preconditioner_group);
+    }
+  } else {
+    sys->lu = std::make_unique<Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXcd>>>(sys->Z);  // in place
+  }
   sys->factor_seconds = seconds_since(t0);
   return sys;
+}
+
+Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& options, std::vector<int>* iterations) const {
+  if (options.method == BemOptions::Method::dense) return lu->solve(B);
+  Eigen::MatrixXcd X = Eigen::MatrixXcd::Zero(B.rows(), B.cols());
+  const Op A = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) { out.noalias() = Z * in; };
+  const Op M = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) {
+    if (precond) precond->apply(in, out);
+    else out = in;
+  };
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {
+    Eigen::VectorXcd x = Eigen::VectorXcd::Zero(B.rows());
+    const GmresResult r = gmres(A, M, B.col(c), x, options.gmres_tolerance, options.gmres_restart,
+                                   options.gmres_max_iterations);
+    if (!r.converged) {
+      throw Error("bem: GMRES did not converge (relative residual " + std::to_string(r.relative_residual) +
+                  " after " + std::to_string(r.iterations) + " iterations)");
+    }
+    if (iterations) iterations->push_back(r.iterations);
+    X.col(c) = x;
+  }
+  return X;
 }
 
 IncidentField incident_for(const BemPrepared& prep, const BemOptions& options, double k0, double theta,
@@ -138,7 +163,7 @@ std::vector<FarField> BemSolver::solve(const Prepared& prepared, double lambda_n
       fill_rhs(mesh, sys->k0, incident_for(*prep, options_, sys->k0, theta, phi_i[a], pol), B.col(2 * a + pol));
     }
   }
-  const Eigen::MatrixXcd X = sys->lu.solve(B);
+  const Eigen::MatrixXcd X = sys->solve(B, options_);
   const Eigen::MatrixXcd F = far_field_operator(mesh, sys->k0, theta, phi_o);
   const Eigen::MatrixXcd E = F * X;
   std::vector<FarField> out;

@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "assembly.hpp"
+#include "gmres.hpp"
 #include "incident.hpp"
 #include "mesh.hpp"
 #include "plumage/scattering_solver.hpp"
@@ -35,6 +36,12 @@ struct BemOptions {
   // Dense LU stores N² complex numbers: refuse larger systems (16 GB at 31 600 unknowns) with a
   // clear error instead of exhausting memory. The fast solver of issue 6 (Deliver 2) is not done.
   int max_dense_unknowns = 20000;
+  double gmres_tolerance = 1e-8;  // relative residual (method gmres)
+  int gmres_restart = 300;
+  int gmres_max_iterations = 5000;
+  // Vertices per block-Jacobi block; 0 = no preconditioner (default: block-Jacobi made the
+  // coated cylinder worse, 233 → 160…2583 iterations, NOTES.md §5).
+  int preconditioner_group = 0;
   QuadratureOptions quadrature;
 };
 
@@ -54,8 +61,15 @@ struct System {
   double lambda_nm = 0, theta = 0, k0 = 0, beta = 0;
   Mesh mesh;
   std::vector<Medium> media;
-  Eigen::PartialPivLU<Eigen::MatrixXcd> lu;
+  // method dense: Z is factorised in place (one N² matrix in memory); method gmres: Z is the
+  // mat-vec operator (dense for now).
+  Eigen::MatrixXcd Z;
+  std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXcd>>> lu;
+  std::unique_ptr<BlockJacobi> precond;
   double assembly_seconds = 0, factor_seconds = 0;
+  // Solves for every column of B (LU, or GMRES column by column); `iterations` gets the GMRES
+  // iteration count per column (empty for LU).
+  Eigen::MatrixXcd solve(const Eigen::MatrixXcd& B, const BemOptions& options, std::vector<int>* iterations = nullptr) const;
 };
 std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm, double theta,
                                      const BemOptions& options);

@@ -210,9 +210,13 @@ Mesh build_mesh(const Geometry& geometry, double lambda_nm, double ppw) {
     if (inc.size() == 2 && s0.a == s1.a && s0.b == s1.b && inc[0].second != inc[1].second) {
       mesh.segments[inc[0].first].zdof[inc[0].second] = nz;
       mesh.segments[inc[1].first].zdof[inc[1].second] = nz;
+      mesh.z_vertex.push_back(v);
       ++nz;
     } else {
-      for (auto [s, end] : inc) mesh.segments[s].zdof[end] = nz++;
+      for (auto [s, end] : inc) {
+        mesh.segments[s].zdof[end] = nz++;
+        mesh.z_vertex.push_back(v);
+      }
     }
   }
   mesh.n_z = nz;

@@ -53,6 +53,7 @@ struct Mesh {
   std::vector<Segment> segments;
   int n_t = 0;  // = vertices.size()
   int n_z = 0;
+  std::vector<int> z_vertex;  // vertex of each z coefficient
   int a_count = 0;  // number of domains
   std::vector<std::vector<int>> domain_segments;  // segments on each domain's boundary
   int unknowns() const { return 2 * (n_t + n_z); }

@@ -1,6 +1,8 @@
 // Probe: mesh statistics of a species barbule (development tool, not a test).
 #include <cstdio>
+#include <chrono>
 #include <map>
+#include <string>
 
 #include "bem_solver.hpp"
 #include "plumage/species_config.hpp"
@@ -27,4 +29,22 @@ int main(int argc, char** argv) {
   double hmin = 1e9;
   for (const auto& s : mesh.segments) hmin = std::min(hmin, s.h);
   std::printf("min segment %.3f nm\n", hmin);
+  if (argc > 4) {  // solve: dense LU vs block-Jacobi GMRES, one plane wave per pol at θ = 0, φ = 0.3
+    for (int method = 0; method < 2; ++method) {
+      bem::BemOptions o;
+      o.points_per_wavelength = ppw;
+      o.max_dense_unknowns = 1 << 30;
+      o.method = method ? bem::BemOptions::Method::gmres : bem::BemOptions::Method::dense;
+      const auto sys = bem::build_system(prep->geometry, lambda, 0.0, o);
+      Eigen::MatrixXcd B(sys->mesh.unknowns(), 2);
+      for (int pol = 0; pol < 2; ++pol) bem::fill_rhs(sys->mesh, sys->k0, bem::plane_wave(0.0, 0.3, pol), B.col(pol));
+      std::vector<int> its;
+      const auto t0 = std::chrono::steady_clock::now();
+      const Eigen::MatrixXcd X = sys->solve(B, o, &its);
+      const double ts = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      std::printf("%s: assembly %.1f s, factor/precond %.1f s, solve 2 rhs %.1f s%s\n", method ? "gmres" : "dense",
+                  sys->assembly_seconds, sys->factor_seconds, ts,
+                  method ? (", iterations " + std::to_string(its[0]) + " / " + std::to_string(its[1])).c_str() : "");
+    }
+  }
 }

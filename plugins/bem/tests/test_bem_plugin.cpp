@@ -54,6 +54,8 @@ void check_slab(const std::string& name, const std::vector<double>& thetas_deg, 
   const auto prep = bem::prepare_geometry(cs);
   const DirectionSet dirs = pattern_directions(400);
   const double dphi = kPi / 400;
+  bem::BemOptions options;  // the beam as the config's solver section defines it
+  options.window_fraction = cfg.root.node("solver").number_or("window_fraction", 0.25);
   for (double theta_deg : thetas_deg) {
     const double theta = deg_to_rad(theta_deg);
     std::vector<double> phis;
@@ -63,7 +65,7 @@ void check_slab(const std::string& name, const std::vector<double>& thetas_deg, 
     const double k0 = wavenumber_per_nm(lambda), g0 = k0 * std::cos(theta);
     for (std::size_t a = 0; a < phis.size(); ++a) {
       for (int pol = 0; pol < 2; ++pol) {
-        const auto beam = bem::incident_for(*prep, bem::BemOptions{}, k0, theta, phis[a], pol);
+        const auto beam = bem::incident_for(*prep, options, k0, theta, phis[a], pol);
         double sum_amp2 = 0.0;
         for (double am : beam.amp) sum_amp2 += am * am;
         const double dalpha = beam.alpha.size() > 1 ? beam.alpha[1] - beam.alpha[0] : 1.0;

@@ -1,0 +1,108 @@
+#include "gmres.hpp"
+
+#include <cmath>
+
+namespace plumage::bem {
+
+GmresResult gmres(const Op& A, const Op& M, const Eigen::VectorXcd& b, Eigen::VectorXcd& x, double tol, int m,
+                  int max_iterations) {
+  using V = Eigen::VectorXcd;
+  GmresResult res;
+  const double bnorm = b.norm();
+  if (bnorm == 0.0) {
+    x.setZero();
+    res.converged = true;
+    return res;
+  }
+  V r(b.size()), w(b.size()), z(b.size());
+  std::vector<V> Vb(m + 1), Zb(m);
+  Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero(m + 1, m);
+  std::vector<std::complex<double>> cs(m), sn(m), g(m + 1);
+  A(x, w);
+  r = b - w;
+  double rnorm = r.norm();
+  while (res.iterations < max_iterations) {
+    if (rnorm <= tol * bnorm) break;
+    Vb[0] = r / rnorm;
+    std::fill(g.begin(), g.end(), 0.0);
+    g[0] = rnorm;
+    int k = 0;
+    for (; k < m && res.iterations < max_iterations; ++k) {
+      M(Vb[k], Zb[k]);
+      A(Zb[k], w);
+      for (int j = 0; j <= k; ++j) {  // modified Gram–Schmidt
+        H(j, k) = Vb[j].dot(w);
+        w -= H(j, k) * Vb[j];
+      }
+      H(k + 1, k) = w.norm();
+      Vb[k + 1] = w / H(k + 1, k).real();
+      for (int j = 0; j < k; ++j) {  // previous Givens rotations
+        const auto t = cs[j] * H(j, k) + sn[j] * H(j + 1, k);
+        H(j + 1, k) = -std::conj(sn[j]) * H(j, k) + std::conj(cs[j]) * H(j + 1, k);
+        H(j, k) = t;
+      }
+      const double a = std::abs(H(k, k)), bb = std::abs(H(k + 1, k));
+      const double d = std::hypot(a, bb);
+      cs[k] = a == 0.0 ? std::complex<double>(0.0) : std::complex<double>(a / d);
+      sn[k] = a == 0.0 ? std::complex<double>(1.0) : (H(k, k) / a) * std::conj(H(k + 1, k)) / d;
+      H(k, k) = cs[k] * H(k, k) + sn[k] * H(k + 1, k);
+      H(k + 1, k) = 0.0;
+      g[k + 1] = -std::conj(sn[k]) * g[k];
+      g[k] = cs[k] * g[k];
+      ++res.iterations;
+      if (std::abs(g[k + 1]) <= tol * bnorm) {
+        ++k;
+        break;
+      }
+    }
+    // y = H⁻¹ g (upper triangular), x += Σ Z_j y_j
+    std::vector<std::complex<double>> y(k);
+    for (int i = k - 1; i >= 0; --i) {
+      auto s = g[i];
+      for (int j = i + 1; j < k; ++j) s -= H(i, j) * y[j];
+      y[i] = s / H(i, i);
+    }
+    for (int j = 0; j < k; ++j) x += y[j] * Zb[j];
+    A(x, w);
+    r = b - w;
+    rnorm = r.norm();
+  }
+  res.relative_residual = rnorm / bnorm;
+  res.converged = res.relative_residual <= tol * 1.0000001;
+  return res;
+}
+
+BlockJacobi::BlockJacobi(const Mesh& mesh, const Eigen::MatrixXcd& Z, int group) {
+  const int ngroups = (mesh.n_t + group - 1) / group;
+  blocks_.assign(ngroups, {});
+  for (int v = 0; v < mesh.n_t; ++v) {
+    blocks_[v / group].push_back(mesh.jt(v));
+    blocks_[v / group].push_back(mesh.mt(v));
+  }
+  for (int z = 0; z < mesh.n_z; ++z) {
+    const int v = mesh.z_vertex[z];
+    blocks_[v / group].push_back(mesh.jz(z));
+    blocks_[v / group].push_back(mesh.mz(z));
+  }
+  for (const auto& idx : blocks_) {
+    const int n = static_cast<int>(idx.size());
+    Eigen::MatrixXcd B(n, n);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) B(i, j) = Z(idx[i], idx[j]);
+    }
+    lu_.emplace_back(B);
+  }
+}
+
+void BlockJacobi::apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const {
+  out.resize(in.size());
+  for (std::size_t b = 0; b < blocks_.size(); ++b) {
+    const auto& idx = blocks_[b];
+    Eigen::VectorXcd v(idx.size());
+    for (std::size_t i = 0; i < idx.size(); ++i) v[i] = in[idx[i]];
+    const Eigen::VectorXcd s = lu_[b].solve(v);
+    for (std::size_t i = 0; i < idx.size(); ++i) out[idx[i]] = s[i];
+  }
+}
+
+}  // namespace plumage::bem

@@ -1,0 +1,37 @@
+// Restarted GMRES(m) with right preconditioning for complex systems (issue 6 Deliver 2, first
+// step: the iterative solver; the mat-vec is still the dense matrix — see NOTES.md §5).
+#pragma once
+
+#include <Eigen/Dense>
+#include <functional>
+#include <vector>
+
+#include "mesh.hpp"
+
+namespace plumage::bem {
+
+using Op = std::function<void(const Eigen::VectorXcd& in, Eigen::VectorXcd& out)>;
+
+struct GmresResult {
+  int iterations = 0;
+  double relative_residual = 0.0;
+  bool converged = false;
+};
+
+// Solves A x = b to ‖b − A x‖ ≤ tol ‖b‖ (x holds the initial guess on entry).
+GmresResult gmres(const Op& A, const Op& precondition, const Eigen::VectorXcd& b, Eigen::VectorXcd& x, double tol,
+                  int restart, int max_iterations);
+
+// Block-Jacobi preconditioner: the unknowns of `group` consecutive mesh vertices (all four
+// families) form one diagonal block of Z, inverted by LU.
+class BlockJacobi {
+ public:
+  BlockJacobi(const Mesh& mesh, const Eigen::MatrixXcd& Z, int group);
+  void apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const;
+
+ private:
+  std::vector<std::vector<int>> blocks_;
+  std::vector<Eigen::PartialPivLU<Eigen::MatrixXcd>> lu_;
+};
+
+}  // namespace plumage::bem

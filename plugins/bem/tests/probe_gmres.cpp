@@ -1,0 +1,33 @@
+// Probe: GMRES convergence on a cylinder (development tool, not a test).
+#include <cstdio>
+#include <cstdlib>
+
+#include "bem_test_support.hpp"
+
+using namespace plumage;
+using namespace plumage::bem;
+int main(int argc, char** argv) {
+  const double ppw = argc > 1 ? atof(argv[1]) : 20, tol = argc > 2 ? atof(argv[2]) : 1e-6;
+  const int group = argc > 3 ? atoi(argv[3]) : 16, restart = argc > 4 ? atoi(argv[4]) : 200;
+  const double lambda = 500;
+  auto cs = testing::layered_cylinder({250.0, 350.0}, {Material::keratin(), Material::melanin()}, lambda, ppw);
+  BemOptions o;
+  o.points_per_wavelength = ppw;
+  const auto prep = prepare_geometry(cs);
+  const auto sys = build_system(prep->geometry, lambda, 0.5, o);
+  const Eigen::MatrixXcd Z = assemble_dense(sys->mesh, sys->media, sys->k0, sys->beta, o.quadrature);
+  Eigen::VectorXcd b(sys->mesh.unknowns());
+  fill_rhs(sys->mesh, sys->k0, plane_wave(0.5, 0.7, 0), b);
+  const Eigen::VectorXcd xref = sys->lu->solve(b);
+  const Op A = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) { out.noalias() = Z * in; };
+  BlockJacobi bj(sys->mesh, Z, group);
+  const Op M = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) { bj.apply(in, out); };
+  const Op I = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) { out = in; };
+  for (int pre = 0; pre < 2; ++pre) {
+    Eigen::VectorXcd x = Eigen::VectorXcd::Zero(b.size());
+    const auto r = gmres(A, pre ? M : I, b, x, tol, restart, 3000);
+    std::printf("N %d precond %d: iterations %d residual %.2e converged %d, |x - x_lu|/|x_lu| %.2e\n",
+                sys->mesh.unknowns(), pre, r.iterations, r.relative_residual, r.converged,
+                (x - xref).norm() / xref.norm());
+  }
+}
