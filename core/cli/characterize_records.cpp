@@ -22,6 +22,9 @@ namespace {
 
 constexpr char kJournalMagic[] = "plumage-characterize-journal 1";
 constexpr std::uint32_t kRecordMagic = 0x524d4c50;  // "PLMR"
+// Bumped whenever the simulation or fitting code changes what a record holds, so that a journal
+// or shard from older code is never mixed with new records.
+constexpr int kFitRevision = 1;
 
 std::uint64_t fnv1a(std::string_view bytes) {
   std::uint64_t h = 14695981039346656037ull;
@@ -55,7 +58,7 @@ std::string hexfloat(double v) {
 
 std::string CharacterizeSettings::fingerprint() const {
   std::ostringstream o;
-  o << "label=" << label << " config_hash=" << config_hash << " variant=" << variant << " fidelity=" << fidelity
+  o << "fit_revision=" << kFitRevision << " label=" << label << " config_hash=" << config_hash << " variant=" << variant << " fidelity=" << fidelity
     << " instances=" << instances << " grid=" << grid << " lambda_nm=";
   for (std::size_t k = 0; k < lambda_nm.size(); ++k) o << (k ? "," : "") << hexfloat(lambda_nm[k]);
   o << " bin_width_nm=" << hexfloat(bin_width_nm) << " pattern=" << pattern_samples << " projected=" << projected_samples
@@ -79,6 +82,9 @@ CharacterizeSettings CharacterizeSettings::from_fingerprint(const std::string& l
   };
   auto num = [&](const char* k) { return std::strtod(field(k).c_str(), nullptr); };
   CharacterizeSettings s;
+  if (field("fit_revision") != std::to_string(kFitRevision))
+    throw Error("characterisation records of fit revision " + field("fit_revision") + ", this build writes " +
+                std::to_string(kFitRevision) + ": recompute them");
   s.label = field("label");
   s.config_hash = field("config_hash");
   s.variant = field("variant");
