@@ -10,6 +10,7 @@ namespace plumage::cli {
 void add_compare_command(CLI::App& app, AppContext& context);  // cmd_compare.cpp
 void add_characterize_command(CLI::App& app, AppContext& context);  // cmd_characterize.cpp
 void add_merge_command(CLI::App& app, AppContext& context);         // cmd_merge.cpp
+void add_brdf_command(CLI::App& app, AppContext& context);          // cmd_brdf.cpp
 }
 
 int main(int argc, char** argv) {
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
   add_table_command(app, context);
   add_compare_command(app, context);
   add_characterize_command(app, context);
+  add_brdf_command(app, context);
   add_merge_command(app, context);
 
   try {
