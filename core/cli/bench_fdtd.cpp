@@ -25,7 +25,7 @@ struct FdtdBench {
   std::string config = "configs/crystals/mallard-green.yaml";
   int n_lambda = 50, n_theta = 20, n_phi = 50;
   bool skip_table = false;
-  double kz_min = 0.25;  // entries with cos θ cos φ below this are blended, not simulated
+  double kz_min = 0.25;  // entries with cos θ cos φ below this are continued to grazing, not simulated
   std::string record;
 };
 
@@ -115,7 +115,7 @@ void add_bench_fdtd_command(CLI::App& bench, AppContext& context) {
   cmd->add_option("--n-lambda", b->n_lambda, "Table wavelengths")->capture_default_str();
   cmd->add_option("--n-theta", b->n_theta, "Table cos theta nodes")->capture_default_str();
   cmd->add_option("--n-phi", b->n_phi, "Table cos phi nodes")->capture_default_str();
-  cmd->add_option("--kz-min", b->kz_min, "Table entries with cos(theta)cos(phi) below this are blended into the grazing limit")->capture_default_str();
+  cmd->add_option("--kz-min", b->kz_min, "Table entries with cos(theta)cos(phi) below this are continued to the grazing limit (impedance form), not simulated")->capture_default_str();
   cmd->add_flag("--skip-table", b->skip_table, "Only the single solve and the broadband run");
   cmd->add_option("--record", b->record, "Markdown file to record the result in (e.g. docs/benchmarks.md)");
   cmd->callback([&context, b] { bench_fdtd(context, *b); });

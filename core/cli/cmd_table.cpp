@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <limits>
 #include <memory>
 #include <sstream>
 
@@ -16,6 +17,7 @@
 #include "commands.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
+#include "plumage/error.hpp"
 #include "plumage/reflection_table.hpp"
 #include "plumage/table_builder.hpp"
 #include "progress.hpp"
@@ -24,6 +26,8 @@ namespace plumage::cli {
 
 namespace {
 
+constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
+
 struct BuildOptions {
   std::string config;
   std::string fidelity = "production";
@@ -31,8 +35,8 @@ struct BuildOptions {
   std::string builder = "fdtd_periodic";
   double lambda_lo = 400, lambda_hi = 700;
   int n_lambda = 0, n_theta = 0, n_phi = 0;  // 0: by fidelity (production 50×20×50, preview 16×10×10)
-  double resolution_nm = 0;                 // 0: the builder's default for the fidelity
-  double k_step = -1;                       // < 0: the builder's default
+  double resolution_nm = kUnset;            // unset: the builder's default for the fidelity
+  double k_step = kUnset;                   // unset: the builder's default
   bool restart = false;                     // ignore an existing checkpoint
 };
 
@@ -61,8 +65,9 @@ void build(AppContext& context, const BuildOptions& o) {
   const int np = o.n_phi > 0 ? o.n_phi : (preview ? 10 : 50);
   std::ostringstream params;
   params << "fidelity: " << o.fidelity << "\n";
-  if (o.resolution_nm > 0) params << "resolution_nm: " << o.resolution_nm << "\n";
-  if (o.k_step >= 0) params << "k_step_per_um: " << o.k_step << "\n";
+  // Given values go to the builder unchanged, so it validates them (exit 2 naming the field).
+  if (!std::isnan(o.resolution_nm)) params << "resolution_nm: " << o.resolution_nm << "\n";
+  if (!std::isnan(o.k_step)) params << "k_step_per_um: " << o.k_step << "\n";
   // Resumable: finished runs go to <out>.partial; a rerun of the same build continues from it.
   const std::string partial = o.out + ".partial";
   if (o.restart) std::filesystem::remove(partial);
@@ -86,8 +91,17 @@ void build(AppContext& context, const BuildOptions& o) {
   }
 }
 
+// A table file given on the command line is user input: a missing or damaged file is exit 2.
+ReflectionTable load_input_table(const std::string& file) {
+  try {
+    return ReflectionTable::load(file);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
 void query(const QueryOptions& o) {
-  const ReflectionTable t = ReflectionTable::load(o.file);
+  const ReflectionTable t = load_input_table(o.file);
   const JonesReflection r = t.query(o.lambda_nm, deg_to_rad(o.theta_deg), deg_to_rad(o.phi_deg));
   const double Rs = std::norm(r.ss) + std::norm(r.ps), Rp = std::norm(r.pp) + std::norm(r.sp);
   auto c = [](Complex z) {
@@ -110,7 +124,7 @@ void query(const QueryOptions& o) {
 }
 
 void plot(const PlotOptions& o) {
-  const ReflectionTable t = ReflectionTable::load(o.file);
+  const ReflectionTable t = load_input_table(o.file);
   const auto& L = t.grid().lambda_nm;
   LineChart chart;
   chart.title = t.metadata().crystal + " reflection table (" + o.file + ")";

@@ -6,10 +6,12 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
+#include "grazing.hpp"
 
 namespace plumage::fdtd_table {
 
@@ -142,6 +144,46 @@ JonesReflection jones_from_engine(const fdtd::FreqResult& f) {
   return {J[0][0], J[0][1], J[1][0], J[1][1]};
 }
 
+namespace {
+
+// A point where the Jones matrix is needed: a table entry or a grazing anchor.
+struct Sample {
+  std::size_t l;
+  double theta, phi;
+};
+
+// One run per sample with exact ε(λ) (the per-entry mode). Samples grouped by λ.
+void evaluate_per_sample(const CellFactory& make_cell, const TableGrid& grid, const std::vector<Sample>& samples,
+                         const fdtd::SimParams& sim, const Options& opt, const TableBuilder::Progress& progress,
+                         std::vector<std::optional<fdtd::FreqResult>>& out, std::size_t& runs) {
+  std::size_t done = 0;
+  for (std::size_t l = 0; l < grid.lambda_nm.size(); ++l) {
+    std::vector<std::size_t> ids;
+    for (std::size_t s = 0; s < samples.size(); ++s)
+      if (samples[s].l == l) ids.push_back(s);
+    if (ids.empty()) continue;
+    const double lam_um = grid.lambda_nm[l] * 1e-3;
+    const fdtd::Cell cell = make_cell(lam_um);
+    const std::vector<double> omegas{2.0 * fdtd::kPi / lam_um};
+    const std::size_t chunk = static_cast<std::size_t>(std::max(1, opt.threads)) * 2;
+    for (std::size_t a = 0; a < ids.size(); a += chunk) {
+      std::vector<fdtd::Job> part;
+      for (std::size_t b = a; b < std::min(ids.size(), a + chunk); ++b) {
+        const auto [kx, ky] = engine_k(grid.lambda_nm[l], samples[ids[b]].theta, samples[ids[b]].phi);
+        part.push_back({kx, ky});
+      }
+      const auto spectra = fdtd::run_batch(cell, part, omegas, sim, opt.threads);
+      for (std::size_t b = 0; b < part.size(); ++b)
+        if (spectra[b].freqs.at(0).valid) out[ids[a + b]] = spectra[b].freqs[0];
+      done += part.size();
+      runs += part.size();
+      if (progress) progress(done, samples.size(), "fdtd runs (one per entry)");
+    }
+  }
+}
+
+}  // namespace
+
 ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const TableGrid& grid,
                             TableMetadata meta, const Options& opt,
                             const TableBuilder::Progress& progress) {
@@ -152,55 +194,48 @@ ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const Ta
   meta.resolution_nm = 1000.0 * ax_um / opt.nx;
   ReflectionTable table(grid, meta);
   const std::size_t NL = grid.lambda_nm.size(), NT = grid.cos_theta.size(), NP = grid.cos_phi.size();
-  std::vector<char> valid(NL * NT * NP, 0);
   auto idx = [&](std::size_t l, std::size_t i, std::size_t j) { return (l * NT + i) * NP + j; };
-  auto simulated = [&](std::size_t i, std::size_t j) {
-    return grid.cos_theta[i] * grid.cos_phi[j] >= kz_min;
-  };
-  std::size_t other_orders = 0, runs_total = 0, resumed_runs = 0;
-  auto note_orders = [&](const fdtd::FreqResult& f) {
-    if (f.other_orders) ++other_orders;
-  };
   auto angles = [&](std::size_t i, std::size_t j) {
     return std::pair<double, double>{std::acos(std::min(1.0, grid.cos_theta[i])),
                                      std::acos(std::min(1.0, grid.cos_phi[j]))};
   };
+  // Samples: every entry with k_z/k0 ≥ kz_min, then the anchors of the grazing continuation
+  // (grazing.hpp) of every entry below it: each entry e gets anchors A·e + m.
+  const std::vector<double> anchor_kappa = anchor_kappas(kz_min, opt.grazing_anchors);
+  const std::size_t NA = anchor_kappa.size();
+  std::vector<Sample> samples;
+  std::vector<std::size_t> entry_sample(NL * NT * NP, SIZE_MAX), anchor_base(NL * NT * NP, SIZE_MAX);
+  for (std::size_t l = 0; l < NL; ++l)
+    for (std::size_t i = 0; i < NT; ++i)
+      for (std::size_t j = 0; j < NP; ++j) {
+        if (grid.cos_theta[i] * grid.cos_phi[j] < kz_min) continue;
+        const auto [t, p] = angles(i, j);
+        entry_sample[idx(l, i, j)] = samples.size();
+        samples.push_back({l, t, p});
+      }
+  for (std::size_t l = 0; l < NL; ++l)
+    for (std::size_t i = 0; i < NT; ++i)
+      for (std::size_t j = 0; j < NP; ++j) {
+        if (grid.cos_theta[i] * grid.cos_phi[j] >= kz_min) continue;
+        const auto [t, p] = angles(i, j);
+        anchor_base[idx(l, i, j)] = samples.size();
+        for (double ka : anchor_kappa) {
+          const auto [ta, pa] = radial_point(t, p, ka);
+          samples.push_back({l, ta, pa});
+        }
+      }
+  std::vector<std::optional<JonesReflection>> value(samples.size());
+  std::size_t other_orders = 0, runs_total = 0, resumed_runs = 0;
 
   if (opt.k_step_per_um <= 0.0) {
-    // One run per entry, constant ε exact at each λ.
-    std::vector<std::pair<std::size_t, std::size_t>> angle_list;
-    for (std::size_t i = 0; i < NT; ++i)
-      for (std::size_t j = 0; j < NP; ++j)
-        if (simulated(i, j)) angle_list.push_back({i, j});
-    const std::size_t total = NL * angle_list.size();
-    std::size_t done = 0;
-    for (std::size_t l = 0; l < NL; ++l) {
-      const double lam_um = grid.lambda_nm[l] * 1e-3;
-      const fdtd::Cell cell = make_cell(lam_um);
-      std::vector<fdtd::Job> jobs;
-      for (auto [i, j] : angle_list) {
-        const auto [t, p] = angles(i, j);
-        const auto [kx, ky] = engine_k(grid.lambda_nm[l], t, p);
-        jobs.push_back({kx, ky});
+    // One run per sample, constant ε exact at each λ.
+    std::vector<std::optional<fdtd::FreqResult>> res(samples.size());
+    evaluate_per_sample(make_cell, grid, samples, sim, opt, progress, res, runs_total);
+    for (std::size_t s = 0; s < samples.size(); ++s)
+      if (res[s]) {
+        value[s] = jones_from_engine(*res[s]);
+        if (res[s]->other_orders) ++other_orders;
       }
-      const std::vector<double> omegas{2.0 * fdtd::kPi / lam_um};
-      const std::size_t chunk = static_cast<std::size_t>(std::max(1, opt.threads)) * 2;
-      for (std::size_t a = 0; a < jobs.size(); a += chunk) {
-        const std::vector<fdtd::Job> part(jobs.begin() + a, jobs.begin() + std::min(jobs.size(), a + chunk));
-        const auto spectra = fdtd::run_batch(cell, part, omegas, sim, opt.threads);
-        for (std::size_t b = 0; b < part.size(); ++b) {
-          const auto [i, j] = angle_list[a + b];
-          const fdtd::FreqResult& f = spectra[b].freqs.at(0);
-          if (!f.valid) continue;
-          note_orders(f);
-          table.at(l, i, j) = jones_from_engine(f);
-          valid[idx(l, i, j)] = 1;
-        }
-        done += part.size();
-        runs_total += part.size();
-        if (progress) progress(done, total, "fdtd runs (one per entry)");
-      }
-    }
   } else {
     // Broadband runs on a Bloch-k grid k_x = −a Δk, k_y = b Δk (a, b ≥ 0), bilinear in (k_x, k_y)
     // at each table frequency. Each node gives Jones matrices at its own angles.
@@ -210,26 +245,22 @@ ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const Ta
       std::size_t node[4];
       double w[4];
     };
-    std::vector<Corner> corners(NL * NT * NP);
-    for (std::size_t l = 0; l < NL; ++l)
-      for (std::size_t i = 0; i < NT; ++i)
-        for (std::size_t j = 0; j < NP; ++j) {
-          if (!simulated(i, j)) continue;
-          const auto [t, p] = angles(i, j);
-          const auto [kx, ky] = engine_k(grid.lambda_nm[l], t, p);
-          const double u = std::max(0.0, -kx / dk), v = std::max(0.0, ky / dk);
-          const int a0 = static_cast<int>(std::floor(u)), b0 = static_cast<int>(std::floor(v));
-          const double fu = u - a0, fv = v - b0;
-          Corner& c = corners[idx(l, i, j)];
-          int k = 0;
-          for (int da = 0; da < 2; ++da)
-            for (int db = 0; db < 2; ++db, ++k) {
-              auto key = std::make_pair(a0 + da, b0 + db);
-              auto it = nodes.emplace(key, nodes.size()).first;
-              c.node[k] = it->second;
-              c.w[k] = (da ? fu : 1.0 - fu) * (db ? fv : 1.0 - fv);
-            }
+    std::vector<Corner> corners(samples.size());
+    for (std::size_t s = 0; s < samples.size(); ++s) {
+      const auto [kx, ky] = engine_k(grid.lambda_nm[samples[s].l], samples[s].theta, samples[s].phi);
+      const double u = std::max(0.0, -kx / dk), v = std::max(0.0, ky / dk);
+      const int a0 = static_cast<int>(std::floor(u)), b0 = static_cast<int>(std::floor(v));
+      const double fu = u - a0, fv = v - b0;
+      Corner& c = corners[s];
+      int k = 0;
+      for (int da = 0; da < 2; ++da)
+        for (int db = 0; db < 2; ++db, ++k) {
+          auto key = std::make_pair(a0 + da, b0 + db);
+          auto it = nodes.emplace(key, nodes.size()).first;
+          c.node[k] = it->second;
+          c.w[k] = (da ? fu : 1.0 - fu) * (db ? fv : 1.0 - fv);
         }
+    }
     std::vector<fdtd::Job> jobs(nodes.size());
     for (const auto& [key, n] : nodes) jobs[n] = {-key.first * dk, key.second * dk};
     std::vector<double> omegas;
@@ -291,79 +322,72 @@ ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const Ta
       if (progress) progress(resumed + a + part.size(), jobs.size(), "fdtd broadband runs (Bloch k grid)");
     }
     resumed_runs = resumed;
-    for (std::size_t l = 0; l < NL; ++l)
-      for (std::size_t i = 0; i < NT; ++i)
-        for (std::size_t j = 0; j < NP; ++j) {
-          if (!simulated(i, j)) continue;
-          const Corner& c = corners[idx(l, i, j)];
-          JonesReflection acc{};
-          double wsum = 0.0;
-          bool orders = false;
-          for (int k = 0; k < 4; ++k) {
-            if (c.w[k] == 0.0) continue;
-            const fdtd::FreqResult& f = spectra[c.node[k]].freqs.at(l);
-            if (!f.valid) continue;
-            orders = orders || f.other_orders;
-            const JonesReflection r = jones_from_engine(f);
-            acc.ss += c.w[k] * r.ss, acc.sp += c.w[k] * r.sp, acc.ps += c.w[k] * r.ps, acc.pp += c.w[k] * r.pp;
-            wsum += c.w[k];
-          }
-          if (wsum < 0.25) continue;  // too little support: treated as not simulated
-          if (orders) ++other_orders;
-          acc.ss /= wsum, acc.sp /= wsum, acc.ps /= wsum, acc.pp /= wsum;
-          table.at(l, i, j) = acc;
-          valid[idx(l, i, j)] = 1;
-        }
+    for (std::size_t s = 0; s < samples.size(); ++s) {
+      const Corner& c = corners[s];
+      JonesReflection acc{};
+      double wsum = 0.0;
+      bool orders = false;
+      for (int k = 0; k < 4; ++k) {
+        if (c.w[k] == 0.0) continue;
+        const fdtd::FreqResult& f = spectra[c.node[k]].freqs.at(samples[s].l);
+        if (!f.valid) continue;
+        orders = orders || f.other_orders;
+        const JonesReflection r = jones_from_engine(f);
+        acc.ss += c.w[k] * r.ss, acc.sp += c.w[k] * r.sp, acc.ps += c.w[k] * r.ps, acc.pp += c.w[k] * r.pp;
+        wsum += c.w[k];
+      }
+      if (wsum < 0.25) continue;  // too little support: treated as not simulated
+      if (orders) ++other_orders;
+      acc.ss /= wsum, acc.sp /= wsum, acc.ps /= wsum, acc.pp /= wsum;
+      value[s] = acc;
+    }
   }
 
-  // Fill the entries that were not simulated: linear in cos φ toward the grazing limit at
-  // cos φ = 0 from the lowest valid entry of the row; whole rows without one, linear in cos θ.
-  const JonesReflection g = grazing_jones();
-  auto blend = [&](const JonesReflection& v, double f) {  // g + f (v − g)
-    return JonesReflection{g.ss + f * (v.ss - g.ss), g.sp + f * (v.sp - g.sp),
-                           g.ps + f * (v.ps - g.ps), g.pp + f * (v.pp - g.pp)};
-  };
-  std::size_t filled = 0;
-  for (std::size_t l = 0; l < NL; ++l) {
-    std::vector<char> row_ok(NT, 0);
+  // Entries: simulated value; below kz_min (or without support) the grazing continuation from
+  // the anchors on the entry's radial k_∥ line; if an anchor is missing too, the continuation
+  // from the nearest simulated entry of the row (one anchor: Z constant).
+  std::size_t continued = 0, fallback = 0, grazing_only = 0;
+  for (std::size_t l = 0; l < NL; ++l)
     for (std::size_t i = 0; i < NT; ++i) {
-      std::size_t jv = NP;
-      for (std::size_t j = 0; j < NP; ++j)
-        if (valid[idx(l, i, j)]) { jv = j; break; }
-      if (jv == NP) continue;
-      row_ok[i] = 1;
       for (std::size_t j = 0; j < NP; ++j) {
-        if (valid[idx(l, i, j)]) continue;
-        ++filled;
-        if (j < jv) {
-          table.at(l, i, j) = blend(table.at(l, i, jv), grid.cos_phi[j] / grid.cos_phi[jv]);
-        } else {  // a gap above the first valid entry: nearest valid below
-          std::size_t k = j;
-          while (k > 0 && !valid[idx(l, i, k)]) --k;
-          table.at(l, i, j) = table.at(l, i, k);
+        const std::size_t e = idx(l, i, j);
+        if (entry_sample[e] != SIZE_MAX && value[entry_sample[e]]) {
+          table.at(l, i, j) = *value[entry_sample[e]];
+          continue;
+        }
+        const double kappa = grid.cos_theta[i] * grid.cos_phi[j];
+        std::vector<GrazingAnchor> anchors;
+        if (anchor_base[e] != SIZE_MAX)
+          for (std::size_t m = 0; m < NA; ++m)
+            if (value[anchor_base[e] + m]) anchors.push_back({anchor_kappa[m], *value[anchor_base[e] + m]});
+        if (anchors.size() == NA && NA > 0) {
+          table.at(l, i, j) = continue_to_grazing(anchors, kappa);
+          ++continued;
+          continue;
+        }
+        anchors.clear();
+        for (std::size_t k = j + 1; k < NP && anchors.empty(); ++k)
+          if (entry_sample[idx(l, i, k)] != SIZE_MAX && value[entry_sample[idx(l, i, k)]])
+            anchors.push_back({grid.cos_theta[i] * grid.cos_phi[k], *value[entry_sample[idx(l, i, k)]]});
+        if (!anchors.empty()) {
+          table.at(l, i, j) = continue_to_grazing(anchors, kappa);
+          ++fallback;
+        } else {
+          table.at(l, i, j) = grazing_jones();
+          ++grazing_only;
         }
       }
     }
-    std::size_t iv = NT;
-    for (std::size_t i = 0; i < NT; ++i)
-      if (row_ok[i]) { iv = i; break; }
-    for (std::size_t i = 0; i < NT; ++i) {
-      if (row_ok[i]) continue;
-      for (std::size_t j = 0; j < NP; ++j) {
-        ++filled;
-        table.at(l, i, j) = (iv == NT || i > iv) ? g
-                                                 : blend(table.at(l, iv, j), grid.cos_theta[i] / grid.cos_theta[iv]);
-      }
-    }
-  }
   std::ostringstream notes;
   notes << "fdtd runs: " << runs_total + resumed_runs;
   if (resumed_runs > 0) notes << " (" << resumed_runs << " resumed from a checkpoint)";
-  notes << "; entries blended toward the grazing limit (k_z/k0 < "
-        << kz_min << "): " << filled << " of " << NL * NT * NP;
+  notes << "; entries continued to the grazing limit (k_z/k0 < " << kz_min << ", impedance form from "
+        << NA << " anchors): " << continued << " of " << NL * NT * NP;
+  if (fallback > 0) notes << "; from the nearest simulated entry (anchor without support): " << fallback;
+  if (grazing_only > 0) notes << "; WARNING: set to the grazing limit (no support): " << grazing_only;
   if (other_orders > 0)
     notes << "; WARNING: " << other_orders
-          << " entries with other propagating diffraction orders (only the specular order is stored)";
+          << " samples with other propagating diffraction orders (only the specular order is stored)";
   table.metadata().notes = notes.str();
   table.metadata().resolution_nm = meta.resolution_nm;
   return table;

@@ -33,6 +33,9 @@ struct Options {
   // with the same key (tag, grid, nodes, resolution) skips them (resumable builds). Empty: off.
   std::string checkpoint;
   std::string checkpoint_tag;  // identifies the cell (e.g. its config hash)
+  // Entries with k_z/k0 < sim.kz_min: anchors per entry of the grazing continuation
+  // (grazing.hpp; Z polynomial in κ² of degree anchors − 1).
+  int grazing_anchors = 2;
 };
 
 // Engine cell for one crystal: lambda_um > 0 gives constant complex ε at that wavelength
@@ -48,8 +51,9 @@ std::pair<double, double> engine_k(double lambda_nm, double theta_rad, double ph
 JonesReflection jones_from_engine(const fdtd::FreqResult& f);
 
 // Fills `grid` (φ_local ≥ 0). Entries with cos θ cos φ < sim.kz_min are not simulated: they are
-// blended linearly in cos φ (then cos θ) into the analytic grazing limit diag(−1, −1); counts and
-// other-order warnings go to meta.notes. ax_um: lateral period (for the grid step h = ax/nx).
+// continued to the grazing limit diag(−1, −1) in the surface-impedance form of grazing.hpp from
+// anchors on their radial k_∥ line inside the simulated region; counts and other-order warnings
+// go to meta.notes. ax_um: lateral period (for the grid step h = ax/nx).
 ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const TableGrid& grid,
                             TableMetadata meta, const Options& options,
                             const TableBuilder::Progress& progress);

@@ -1,6 +1,8 @@
 #include "crystal_table_reflection.hpp"
 
+#include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -71,6 +73,7 @@ CrystalTableReflection::CrystalTableReflection(const ParamView& params, const Pl
     const fs::path file = resolve(context, params.text("table"));
     table_ = ReflectionTable::load(file);
     table_file_ = file.string();
+    std::call_once(ready_, [] {});
     return;
   }
   // On demand: build with the table builder, cached under <cache>/tables/<key>.plt.
@@ -82,31 +85,76 @@ CrystalTableReflection::CrystalTableReflection(const ParamView& params, const Pl
   const int nt = static_cast<int>(params.integer_or("n_theta", 20, Limits::closed(1, 10000)));
   const int np = static_cast<int>(params.integer_or("n_phi", 50, Limits::closed(1, 10000)));
   const ParamView builder_params = params.has("builder") ? params.child("builder") : ParamView{};
+  cell_ = load_crystal_cell(crystal_file);  // validates the crystal now (file:line:col errors)
+  crystal_file_ = crystal_file.string();
+  config_hash_ = fnv1a_hex(read_bytes(crystal_file));
   std::ostringstream key;
-  key << "crystal=" << fnv1a_hex(read_bytes(crystal_file)) << ";builder=" << builder_type << ";";
+  key << "crystal=" << config_hash_ << ";builder=" << builder_type << ";";
   if (params.has("builder")) flatten(builder_params, key);
   key << ";grid=" << lo << "," << hi << "," << nl << "," << nt << "," << np;
   const fs::path cache = context.cache_dir.empty() ? fs::path("build/cache") : context.cache_dir;
-  const fs::path file = cache / "tables" / (crystal_file.stem().string() + "-" + fnv1a_hex(key.str()) + ".plt");
-  table_file_ = file.string();
-  if (fs::exists(file)) {
-    table_ = ReflectionTable::load(file);
+  const std::string stem = crystal_file.stem().string();
+  table_file_ = (cache / "tables" / (stem + "-" + fnv1a_hex(key.str()) + ".plt")).string();
+  grid_ = TableGrid::uniform(lo, hi, nl, nt, np);
+  if (fs::exists(table_file_)) {
+    table_ = ReflectionTable::load(table_file_);
+    std::call_once(ready_, [] {});
     return;
   }
   if (!context.registry)
-    throw Error("photonic_crystal: building " + file.string() + " needs the plug-in registry");
-  const CrystalCell cell = load_crystal_cell(crystal_file);
-  auto builder = context.registry->create_named<TableBuilder>(builder_type, builder_params, context);
-  table_ = builder->build(cell, TableGrid::uniform(lo, hi, nl, nt, np), {});
-  table_.metadata().config_hash = fnv1a_hex(read_bytes(crystal_file));
-  fs::create_directories(file.parent_path());
-  table_.save(file);
+    throw Error("photonic_crystal: building " + table_file_ + " needs the plug-in registry");
+  builder_ = context.registry->create_named<TableBuilder>(builder_type, builder_params, context);
+  // The preview variant (PLUMAGE_TABLE_BUILD=preview): the builder's preview fidelity on a
+  // 4 λ × 5 cos θ × 5 cos φ grid over the same λ range, cached under its own key.
+  const ConfigDocument preview_doc = ConfigDocument::parse("fidelity: preview\n", "PLUMAGE_TABLE_BUILD=preview");
+  preview_builder_ = context.registry->create_named<TableBuilder>(builder_type, preview_doc.root(), context);
+  std::ostringstream pkey;
+  pkey << "crystal=" << config_hash_ << ";builder=" << builder_type << ";fidelity{preview};grid=" << lo << ","
+       << hi << ",4,5,5";
+  preview_file_ = (cache / "tables" / (stem + "-preview-" + fnv1a_hex(pkey.str()) + ".plt")).string();
+}
+
+void CrystalTableReflection::build_or_load() const {
+  std::call_once(ready_, [this] {
+    // Under CTest (it sets CTEST_INTERACTIVE_DEBUG_MODE for every test it runs) the default is
+    // "preview": the default test suite never starts a production table build.
+    const char* env = std::getenv("PLUMAGE_TABLE_BUILD");
+    const std::string policy = env ? env : (std::getenv("CTEST_INTERACTIVE_DEBUG_MODE") ? "preview" : "build");
+    if (policy == "never")
+      throw Error("photonic_crystal: reflection table " + table_file_ + " of " + crystal_file_ +
+                  " is not built and PLUMAGE_TABLE_BUILD=never; build it by running once without "
+                  "that setting (or use `plumage table build` and give the file as table:)");
+    const bool preview = policy == "preview";
+    if (!preview && policy != "build")
+      throw Error("photonic_crystal: PLUMAGE_TABLE_BUILD must be build, preview or never (got '" + policy + "')");
+    const fs::path file = preview ? preview_file_ : table_file_;
+    if (fs::exists(file)) {
+      table_ = ReflectionTable::load(file);
+      return;
+    }
+    const TableGrid grid = preview ? TableGrid::uniform(grid_.lambda_nm.front(), grid_.lambda_nm.back(), 4, 5, 5) : grid_;
+    std::cerr << "photonic_crystal: building the " << (preview ? "preview " : "") << "reflection table of "
+              << cell_.name << " (" << grid.lambda_nm.size() << " x " << grid.cos_theta.size() << " x "
+              << grid.cos_phi.size() << " entries) into " << file.string()
+              << (preview ? "" : "; the production table takes ~10-15 min on 2 cores, once (cached)") << "\n";
+    ReflectionTable t = (preview ? preview_builder_ : builder_)->build(cell_, grid, {});
+    t.metadata().config_hash = config_hash_;
+    fs::create_directories(file.parent_path());
+    t.save(file);  // atomic (ReflectionTable::save)
+    table_ = std::move(t);
+  });
+}
+
+const ReflectionTable& CrystalTableReflection::table() const {
+  build_or_load();
+  return table_;
 }
 
 void CrystalTableReflection::reflect(std::span<const Request> requests, std::span<JonesReflection> out) const {
   if (out.size() < requests.size()) throw Error("photonic_crystal: output span shorter than requests");
+  const ReflectionTable& t = table();
   for (std::size_t i = 0; i < requests.size(); ++i)
-    out[i] = table_.query(requests[i].lambda_nm, requests[i].incidence);
+    out[i] = t.query(requests[i].lambda_nm, requests[i].incidence);
 }
 
 }  // namespace plumage::photonic_crystal
