@@ -1,6 +1,8 @@
 // Galerkin blocks of spec §6.4 per segment pair and domain; see assembly.hpp.
 #include "assembly.hpp"
 
+#include <tbb/parallel_for.h>
+
 namespace plumage::bem {
 
 namespace {
@@ -88,25 +90,41 @@ Eigen::MatrixXcd assemble_dense(const Mesh& mesh, const std::vector<Medium>& md,
       for (int c = 0; c < 8; ++c) Z(ra[r], cb[c]) += loc[r][c];
     }
   };
+  // Pair integrals of a block of rows in parallel (oneTBB), then scattered in a fixed order, so the
+  // matrix does not depend on the thread count.
+  constexpr std::size_t kRows = 64;
   for (int dom = 0; dom < mesh.a_count; ++dom) {
     const auto& segs = mesh.domain_segments[dom];
-    for (std::size_t x = 0; x < segs.size(); ++x) {
-      const Segment& A = mesh.segments[segs[x]];
-      for (std::size_t y = x; y < segs.size(); ++y) {
-        const Segment& B = mesh.segments[segs[y]];
-        const PairIntegrals in = pair_integrals(A, B, md[dom].gamma, x == y, q);
-        scatter(A, B, in, dom);
-        if (x == y) continue;
-        // (B, A) from the same integrals: I' = Iᵀ, P' = −Qᵀ, Q' = −Pᵀ (R̂ changes sign)
-        PairIntegrals tr;
-        for (int i = 0; i < 2; ++i) {
-          for (int j = 0; j < 2; ++j) {
-            tr.I[j][i] = in.I[i][j];
-            tr.P[j][i] = -in.Q[i][j];
-            tr.Q[j][i] = -in.P[i][j];
-          }
+    const std::size_t n = segs.size();
+    std::vector<std::vector<PairIntegrals>> buf(kRows);
+    for (std::size_t x0 = 0; x0 < n; x0 += kRows) {
+      const std::size_t x1 = std::min(n, x0 + kRows);
+      tbb::parallel_for(x0, x1, [&](std::size_t x) {
+        auto& row = buf[x - x0];
+        row.resize(n - x);
+        const Segment& A = mesh.segments[segs[x]];
+        for (std::size_t y = x; y < n; ++y) {
+          row[y - x] = pair_integrals(A, mesh.segments[segs[y]], md[dom].gamma, x == y, q);
         }
-        scatter(B, A, tr, dom);
+      });
+      for (std::size_t x = x0; x < x1; ++x) {
+        const Segment& A = mesh.segments[segs[x]];
+        for (std::size_t y = x; y < n; ++y) {
+          const Segment& B = mesh.segments[segs[y]];
+          const PairIntegrals& in = buf[x - x0][y - x];
+          scatter(A, B, in, dom);
+          if (x == y) continue;
+          // (B, A) from the same integrals: I' = Iᵀ, P' = −Qᵀ, Q' = −Pᵀ (R̂ changes sign)
+          PairIntegrals tr;
+          for (int i = 0; i < 2; ++i) {
+            for (int j = 0; j < 2; ++j) {
+              tr.I[j][i] = in.I[i][j];
+              tr.P[j][i] = -in.Q[i][j];
+              tr.Q[j][i] = -in.P[i][j];
+            }
+          }
+          scatter(B, A, tr, dom);
+        }
       }
     }
   }

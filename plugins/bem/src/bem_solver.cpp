@@ -54,7 +54,7 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
                 " nm (" + std::to_string(sys->mesh.segments.size()) + " segments) exceed max_dense_unknowns = " +
                 std::to_string(options.max_dense_unknowns) + " (dense LU would need " +
                 std::to_string(static_cast<long>(n * n * 16 / 1e9 + 0.5)) +
-                " GB); the fast (GMRES) solver is not implemented yet — simulate a narrower segment");
+                " GB); no compressed mat-vec yet (method gmres also stores the dense matrix) — simulate a narrower segment");
   }
   auto t0 = std::chrono::steady_clock::now();
   sys->Z = assemble_dense(sys->mesh, sys->media, sys->k0, sys->beta, options.quadrature);
