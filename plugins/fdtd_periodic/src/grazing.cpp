@@ -42,6 +42,19 @@ std::pair<double, double> radial_point(double theta, double phi, double kappa) {
   return {std::asin(std::min(1.0, uy)), std::atan2(ux, kappa)};
 }
 
+JonesReflection impedance_of(const JonesReflection& J, double kappa) {
+  const M2 j = mat(J);
+  const M2 Z = scale(mul(add_identity(j, 1.0), inv(add_identity(scale(j, -1.0), 1.0))), 1.0 / kappa);
+  return {Z[0], Z[1], Z[2], Z[3]};
+}
+
+JonesReflection jones_of(const JonesReflection& Z, double kappa) {
+  if (kappa <= 0.0) return grazing_jones();
+  const M2 kZ = scale(mat(Z), kappa);
+  const M2 J = mul(add_identity(kZ, -1.0), inv(add_identity(kZ, 1.0)));
+  return {J[0], J[1], J[2], J[3]};
+}
+
 JonesReflection continue_to_grazing(std::span<const GrazingAnchor> anchors, double kappa) {
   if (anchors.empty()) throw Error("fdtd_periodic: grazing continuation without anchors");
   if (kappa <= 0.0) return grazing_jones();

@@ -31,11 +31,19 @@ struct GrazingAnchor {
   JonesReflection J;  // Jones matrix there (its own (s, p) basis)
 };
 
-// κ of the anchors used for entries below kz_min: kz_min + 0.01 + m·0.05, m = 0 … count−1.
+// κ of the anchors used for entries below kz_min: kz_min + 0.01 + m·0.05, m = 0 … count−1
+// (0.26, 0.31 in production). An anchor without k-grid support falls back (table_build.cpp).
 std::vector<double> anchor_kappas(double kz_min, int count = 2);
 
 // (θ, φ) of the point with k_z/k0 = kappa on the radial k_∥ line through (θ, φ) (φ ≥ 0).
 std::pair<double, double> radial_point(double theta_rad, double phi_rad, double kappa);
+
+// Surface impedance of a Jones matrix at κ = k_z/k0 > 0: Z = (I + J)(I − J)⁻¹/κ, stored in a
+// JonesReflection (ss, sp, ps, pp = Z's elements), and its inverse J = (κZ − I)(κZ + I)⁻¹.
+// Z is smooth in (k_x, k_y) through the light line where J has a square-root branch point
+// (κ = sqrt(1 − |k_∥|²/k0²)), so the k-grid interpolation works on Z (table_build.cpp).
+JonesReflection impedance_of(const JonesReflection& J, double kappa);
+JonesReflection jones_of(const JonesReflection& Z, double kappa);
 
 // Jones matrix at κ from anchors (≥ 1; Z fitted as a polynomial in κ² of degree count − 1 through
 // the anchors, exact interpolation). Returns exactly diag(−1, −1) at κ = 0.

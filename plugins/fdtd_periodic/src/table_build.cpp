@@ -322,6 +322,9 @@ ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const Ta
       if (progress) progress(resumed + a + part.size(), jobs.size(), "fdtd broadband runs (Bloch k grid)");
     }
     resumed_runs = resumed;
+    // Bilinear in k of the surface impedance Z = (I + J)(I − J)⁻¹/κ of every corner at its own
+    // κ = k_z/k0 (grazing.hpp), mapped back with the sample's κ: J itself has a square-root branch
+    // point at the light line (κ = sqrt(1 − |k_∥|²/k0²)) and is poorly interpolated near it.
     for (std::size_t s = 0; s < samples.size(); ++s) {
       const Corner& c = corners[s];
       JonesReflection acc{};
@@ -332,14 +335,14 @@ ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const Ta
         const fdtd::FreqResult& f = spectra[c.node[k]].freqs.at(samples[s].l);
         if (!f.valid) continue;
         orders = orders || f.other_orders;
-        const JonesReflection r = jones_from_engine(f);
+        const JonesReflection r = impedance_of(jones_from_engine(f), f.cos_theta * f.cos_phi);
         acc.ss += c.w[k] * r.ss, acc.sp += c.w[k] * r.sp, acc.ps += c.w[k] * r.ps, acc.pp += c.w[k] * r.pp;
         wsum += c.w[k];
       }
       if (wsum < 0.25) continue;  // too little support: treated as not simulated
       if (orders) ++other_orders;
       acc.ss /= wsum, acc.sp /= wsum, acc.ps /= wsum, acc.pp /= wsum;
-      value[s] = acc;
+      value[s] = jones_of(acc, std::cos(samples[s].theta) * std::cos(samples[s].phi));
     }
   }
 
