@@ -8,6 +8,11 @@
 // directional albedo) → XYZ as a reflectance under D65, bin i constant on [λ_i, λ_i + width]
 // (spec §4.12) → linear sRGB × exposure → clip → sRGB transfer. The exposure (stated in the
 // picture's title) maps the 99.5th percentile of the mean panels' luminance to 1 unless given.
+//
+// `plumage brdf check FILE.plm [--transmission T]`: white furnace of the BSDF built from the
+// material, at every table entry (nodes with cos θ_i, cos φ_i > 0) and cell centre of every bin:
+// A_r (the fitter's accurate hemisphere integral of the lobe the BSDF evaluates) + T ≤ 1. Also
+// reports the material's own albedo at the nodes before the BSDF's clamp. Exit 1 on a violation.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -23,6 +28,7 @@
 #include "plumage/error.hpp"
 #include "plumage/feather_bsdf.hpp"
 #include "plumage/feather_material.hpp"
+#include "plumage/fitter.hpp"
 #include "plumage/image.hpp"
 
 namespace plumage::cli {
@@ -180,10 +186,61 @@ void plot(const AppContext& context, const PlotOptions& o) {
   if (!context.quiet) std::fprintf(stderr, "wrote %s (exposure %g)\n", o.out.c_str(), exposure);
 }
 
+struct CheckOptions {
+  std::string file;
+  double transmission = FeatherBsdfOptions{}.transmission_albedo;
+};
+
+void check(const CheckOptions& o) {
+  if (!(o.transmission >= 0.0 && o.transmission <= 1.0)) throw UsageError("--transmission must be in [0, 1]");
+  auto material = std::make_shared<const FeatherMaterial>(read_feather_material(o.file));
+  FeatherBsdfOptions options;
+  options.transmission_albedo = o.transmission;
+  const FeatherBsdf bsdf(material, options);
+  const int g = material->grid;
+  const std::size_t bins = material->lambda_nm.size();
+  struct Worst {
+    double total = 0.0, raw = 0.0;
+    int over_raw = 0;
+  };
+  std::vector<Worst> per_bin(bins);
+  tbb::parallel_for(std::size_t{0}, bins, [&](std::size_t w) {
+    Worst& r = per_bin[w];
+    auto visit = [&](double ct, double cp, bool node) {
+      const Direction wi{ct * std::sqrt(1.0 - cp * cp), std::sqrt(1.0 - ct * ct), ct * cp};
+      const FeatherBsdf::Incident in = bsdf.incident_bin(w, wi);
+      const double a = in.reflects ? hemisphere_lobe_integral(in.mean, in.theta_abs) : 0.0;
+      r.total = std::max(r.total, a + in.transmission);
+      if (node && in.energy_scale > 0.0) {
+        r.raw = std::max(r.raw, a / in.energy_scale);
+        r.over_raw += a / in.energy_scale > 1.0;
+      }
+    };
+    for (int i = 1; i <= g; ++i)
+      for (int j = 1; j <= g; ++j) visit(static_cast<double>(i) / g, static_cast<double>(j) / g, true);
+    for (int i = 0; i < g; ++i)
+      for (int j = 0; j < g; ++j) visit((i + 0.5) / g, (j + 0.5) / g, false);
+  });
+  double worst = 0.0, worst_raw = 0.0;
+  int over = 0;
+  std::printf("bin  lambda_nm  T_w      max(A_r+T)  material max A_r (nodes)  nodes with A_r > 1\n");
+  for (std::size_t w = 0; w < bins; ++w) {
+    std::printf("%3zu  %9.1f  %.4f   %.5f     %.5f                   %d\n", w, material->lambda_nm[w],
+                bsdf.transmission_albedo(w), per_bin[w].total, per_bin[w].raw, per_bin[w].over_raw);
+    worst = std::max(worst, per_bin[w].total);
+    worst_raw = std::max(worst_raw, per_bin[w].raw);
+    over += per_bin[w].over_raw;
+  }
+  std::printf("worst A_r + T over %zu table entries and cell centres: %.5f; material: %d nodes with A_r > 1 "
+              "(worst %.5f), clamped by the BSDF\n",
+              bins * static_cast<std::size_t>(g * g + g * g), worst, over, worst_raw);
+  if (worst > 1.0) throw Error(o.file + ": white furnace violated: A_r + T = " + std::to_string(worst));
+}
+
 }  // namespace
 
 void add_brdf_command(CLI::App& app, AppContext& context) {
-  auto* brdf = app.add_subcommand("brdf", "Feather BSDF (.plm materials): pictures");
+  auto* brdf = app.add_subcommand("brdf", "Feather BSDF (.plm materials): pictures and the white furnace");
   brdf->require_subcommand(1);
   auto p = std::make_shared<PlotOptions>();
   auto* cp = brdf->add_subcommand("plot", "Projected-hemisphere plots of the mean BRDF and of instances (paper Fig. 10)");
@@ -194,6 +251,11 @@ void add_brdf_command(CLI::App& app, AppContext& context) {
   cp->add_option("--size", p->size, "Pixels per panel side")->capture_default_str();
   cp->add_option("--exposure", p->exposure, "Linear exposure (0: automatic)")->capture_default_str();
   cp->callback([&context, p] { plot(context, *p); });
+  auto c = std::make_shared<CheckOptions>();
+  auto* cc = brdf->add_subcommand("check", "White furnace of the BSDF at every table entry (A_r + T <= 1)");
+  cc->add_option("file", c->file, "Feather material (.plm)")->required()->check(CLI::ExistingFile);
+  cc->add_option("--transmission", c->transmission, "Requested diffuse transmission albedo")->capture_default_str();
+  cc->callback([c] { check(*c); });
 }
 
 }  // namespace plumage::cli

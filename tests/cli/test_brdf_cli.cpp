@@ -1,4 +1,4 @@
-// `plumage brdf plot` end to end (core/cli/cmd_brdf.cpp): a small synthetic feather material is
+// `plumage brdf plot` and `brdf check` end to end (core/cli/cmd_brdf.cpp): a small synthetic material is
 // written through the material IO, plotted for three incident directions with instances; bad
 // input exits 2 (nothing written), a corrupt material fails with an error naming the file.
 #include <catch2/catch.hpp>
@@ -88,6 +88,15 @@ TEST_CASE("brdf plot: hemisphere pictures of the mean and instances", "[cli][brd
   }
   CHECK(colours.size() > 200);
   CHECK(green > 100);
+}
+
+TEST_CASE("brdf check: white furnace at every table entry of a material", "[cli][brdf]") {
+  const fs::path plm = synthetic_material();
+  const Result r = run("brdf check " + plm.string() + " --transmission 0.05");
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK(r.output.find("worst A_r + T over 320 table entries and cell centres") != std::string::npos);
+  CHECK(run("brdf check " + plm.string() + " --transmission 2").status == 2);
 }
 
 TEST_CASE("brdf plot: bad input exits 2 and writes nothing; a corrupt material names the file", "[cli][brdf]") {
