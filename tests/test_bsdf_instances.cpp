@@ -15,8 +15,8 @@ namespace {
 
 constexpr int kInstances = 10000;
 
-// Two bins; l = 0.3 (bin 0) and 0.21 (bin 1) in direction cosine, so l_min = 0.21 and the bin-0
-// queries with 0.21 < |x| ≤ 0.3 exercise the shared cut-off.
+// Two bins; relative correlation lengths l/l0 = 0.3 (bin 0) and 0.21 (bin 1), so l_min = 0.21
+// and the bin-0 queries with 0.21 < |x| ≤ 0.3 exercise the shared cut-off.
 std::shared_ptr<FeatherMaterial> instance_material(NoisePool pool) {
   MaterialRecipe r;
   r.bins = 2;
@@ -26,10 +26,11 @@ std::shared_ptr<FeatherMaterial> instance_material(NoisePool pool) {
   r.m_sta = [](int, double, double) { return 0.08; };
   r.coherent = [](int w, double, double) { return w == 0 ? 0.2 : 0.05; };  // bin 0: partly coherent; bin 1: nearly developed speckle
   r.pol_share = 0.6;
+  r.correlation = 0.3;
   auto m = std::make_shared<FeatherMaterial>(
       make_material(r, [](const Lobe& l, double t) { return lobe_integral(l, t, 16, 3); }));
   for (int i = 0; i <= r.grid; ++i)
-    for (int j = 0; j <= r.grid; ++j) m->node(1, i, j).correlation = 0.7;
+    for (int j = 0; j <= r.grid; ++j) m->node(1, i, j).correlation = 0.21;
   m->noise = std::move(pool);
   return m;
 }

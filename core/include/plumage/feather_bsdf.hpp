@@ -128,9 +128,10 @@ class FeatherBsdf {
   // The fine (cos θ_i, cos φ_i) axis of the energy table (same for both cosines).
   const std::vector<double>& energy_axis() const { return axis_; }
 
-  // The noise value of one function of the pool at x (direction-cosine units), correlation
-  // length l (spec §4.9 step 5): variance-preserving linear interpolation. Returns false where
-  // the instance falls back to the mean (|x| > l_min, or |x/l| > 1).
+  // The noise value of one function of the pool at x = ω_i,x + ω_o,x, domain scale l = the
+  // relative correlation length l/l0 (spec §4.9 steps 2 and 5): variance-preserving linear
+  // interpolation. Returns false where the instance falls back to the mean (|x| > l_min, the
+  // smallest relative l over the bins at normal incidence, or |x/l| > 1).
   bool noise_value(std::size_t function, double x, double l, double* value) const;
 
  private:

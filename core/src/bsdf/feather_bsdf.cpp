@@ -30,7 +30,14 @@ FeatherBsdf::FeatherBsdf(std::shared_ptr<const FeatherMaterial> material, Feathe
   if (!(options_.transmission_albedo >= 0.0 && options_.transmission_albedo <= 1.0)) {
     throw Error("FeatherBsdf: transmission albedo must be in [0, 1]");
   }
-  l_min_ = m.noise.count() > 0 ? m.min_correlation_length() : 0.0;
+  // Noise cut-off shared by all bins (spec §4.9 step 5): the smallest relative correlation
+  // length l/l0 over the bins, at normal incidence (as FeatherMaterial::min_correlation_length,
+  // which returns it times l0).
+  l_min_ = 0.0;
+  if (m.noise.count() > 0) {
+    l_min_ = 1e300;
+    for (std::size_t w = 0; w < m.lambda_nm.size(); ++w) l_min_ = std::min(l_min_, m.node(w, m.grid, m.grid).correlation);
+  }
   compute_energy_budget();
 }
 

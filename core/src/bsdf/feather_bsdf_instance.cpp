@@ -50,7 +50,10 @@ double FeatherBsdf::eval(const Incident& in, const Direction& wo, std::uint64_t 
   if (count == 0) return mean;
   const std::size_t k = static_cast<std::size_t>(instance % count);
   const double x = in.wi_x_world + wo.x;
-  const double l = in.p.correlation * material_->l0;
+  // The domain scale is the RELATIVE correlation length l/l0 (spec §4.9 steps 2 and 5): the
+  // pool was synthesised on the x-grid of the reference unit (spacing 2/samples), where the
+  // correlation length is l0, so elsewhere x ↔ u = x/(l/l0).
+  const double l = in.p.correlation;
   double n_re = 0.0, n_im = 0.0;
   if (!noise_value((2 * k) % count, x, l, &n_re) || !noise_value((2 * k + 1) % count, x, l, &n_im)) return mean;
   const double stats = lobe_value(in.stats, in.theta_abs, o) / o.z;
