@@ -116,7 +116,7 @@ CrossSection flat_strip(double width_nm, int segments) {
 
 }  // namespace
 
-TEST_CASE("grazing: the paper's Eq. 9 normalisation breaks, the lossless one holds", "[solver]") {
+TEST_CASE("grazing: the paper's Eq. 9 normalisation breaks, the lossless and capped ones hold", "[solver]") {
   // A perfect flat mirror (|r| = 1) 40 µm wide: R must be 1 in exact physics.
   struct Mirror final : LocalReflection {
     void reflect(std::span<const Request> q, std::span<JonesReflection> o) const override {
@@ -126,7 +126,8 @@ TEST_CASE("grazing: the paper's Eq. 9 normalisation breaks, the lossless one hol
   const CrossSection cs = flat_strip(40000.0, 1333);
   const auto dirs = pattern_directions(400).phi_o_rad;
   const ApproximateSolver eq9(ApproximateSolver::Currents::reflected, 0.25, ApproximateSolver::Normalisation::eq9);
-  const ApproximateSolver lossless(ApproximateSolver::Currents::reflected, 0.25);
+  const ApproximateSolver lossless(ApproximateSolver::Currents::reflected, 0.25, ApproximateSolver::Normalisation::lossless);
+  const ApproximateSolver capped(ApproximateSolver::Currents::reflected, 0.25);  // the default
   auto fraction = [&](const ApproximateSolver& solver, std::shared_ptr<const LocalReflection> r,
                       double ct, double cp, int pol) {
     const double phi[1] = {std::acos(cp)};
@@ -159,11 +160,23 @@ TEST_CASE("grazing: the paper's Eq. 9 normalisation breaks, the lossless one hol
       CHECK(got <= std::max(expect_s, expect_p) * (1 + tol));
     }
   }
+  // The default caps Eq. 9 by the lossless reference: where Eq. 9 creates energy (a perfect
+  // mirror at (0.05, 0.05): 1.56) it is replaced; where it does not, it stands.
+  CHECK(fraction(capped, mirror, 0.05, 0.05, 0) == Approx(1.0).margin(1e-9));
+  CHECK(fraction(capped, mirror, 1.0, 0.05, 0) == Approx(fraction(eq9, mirror, 1.0, 0.05, 0)).epsilon(1e-12));
+  CHECK(fraction(capped, glass, 1.0, 1.0, 0) == Approx(fraction(eq9, glass, 1.0, 1.0, 0)).epsilon(1e-12));
+  for (const auto& [ct, cp] : {std::pair{0.05, 0.05}, std::pair{0.2, 1.0}, std::pair{1.0, 0.2}, std::pair{0.5, 0.5}}) {
+    for (int pol = 0; pol < 2; ++pol) {
+      const double c = fraction(capped, glass, ct, cp, pol);
+      CHECK(c <= fraction(lossless, glass, ct, cp, pol) * (1 + 1e-12));
+      CHECK(c <= fraction(eq9, glass, ct, cp, pol) * (1 + 1e-12));
+    }
+  }
 }
 
 TEST_CASE("chunked far field agrees with the exact sum on every layered species", "[solver][species]") {
   const ApproximateSolver exact(ApproximateSolver::Currents::reflected, 0.25,
-                                ApproximateSolver::Normalisation::lossless, {.chunked = false});
+                                ApproximateSolver::Normalisation::capped, {.chunked = false});
   const ApproximateSolver chunked(ApproximateSolver::Currents::reflected, 0.25);
   for (const auto& s : layered_species()) {
     const CrossSection cs = s.structure->generate(1);
@@ -191,7 +204,7 @@ TEST_CASE("chunked far field agrees with the exact sum on every layered species"
 TEST_CASE("mirror symmetry: a mirrored barbule mirrors its pattern", "[solver][species]") {
   const auto dirs = pattern_directions(400).phi_o_rad;
   const ApproximateSolver exact(ApproximateSolver::Currents::reflected, 0.25,
-                                ApproximateSolver::Normalisation::lossless, {.chunked = false});
+                                ApproximateSolver::Normalisation::capped, {.chunked = false});
   for (const auto& s : layered_species()) {
     const CrossSection cs = s.structure->generate(3);
     // The exact sum is symmetric to rounding. The chunked one (symmetric grid and chunks) is

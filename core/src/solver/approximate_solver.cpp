@@ -277,7 +277,8 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
     }
   }
   const Complex prefactor = far_field_prefactor(k0, gamma0);
-  const bool lossless = normalisation_ == Normalisation::lossless;
+  // Both `lossless` and `capped` radiate the lossless reference currents.
+  const bool lossless = normalisation_ != Normalisation::eq9;
   static const std::vector<double> kPatternBins = pattern_directions(kReferenceBins).phi_o_rad;
   const auto n = static_cast<Eigen::Index>(nodes);
   Eigen::MatrixXcd amplitudes(n, lossless ? 24 : 12);
@@ -322,7 +323,12 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
         for (Eigen::Index j = 0; j < reference_out.rows(); ++j) {
           sum += std::norm(reference_out(j, 2 * p)) + std::norm(reference_out(j, 2 * p + 1));
         }
-        ff.incident_power[p] = ct * std::norm(prefactor) * sum * (kPi / kReferenceBins) / (2.0 * kEta0_ohm);
+        const double reference = ct * std::norm(prefactor) * sum * (kPi / kReferenceBins) / (2.0 * kEta0_ohm);
+        // `capped`: Eq. 9 unless the lossless reference radiates more than it, i.e. unless the
+        // approximation would create energy; `lossless`: the reference itself.
+        ff.incident_power[p] = normalisation_ == Normalisation::capped
+                                   ? std::max(ff.incident_power[p], reference)
+                                   : reference;
       }
     }
   }
@@ -401,7 +407,7 @@ FarField ApproximateSolver::solve_direct_sum(const Prepared& prepared, double la
 
 void register_approximate_solver(PluginRegistry& registry) {
   static constexpr std::string_view kCurrents[] = {"reflected", "incident_and_reflected"};
-  static constexpr std::string_view kNormalisations[] = {"lossless", "eq9"};
+  static constexpr std::string_view kNormalisations[] = {"capped", "lossless", "eq9"};
   static constexpr std::string_view kFarFields[] = {"chunked", "exact"};
   registry.builtin_registrar().add<ScatteringSolver>(
       {.kind = "",
@@ -409,13 +415,14 @@ void register_approximate_solver(PluginRegistry& registry) {
        .version = "1.1.0",
        .summary = "paper §4: local reflection under each top node, Eq. 2 currents, 2.5D far "
                   "field on the specular cone (exact tent × plane-wave integrals, chunked "
-                  "band-limited interpolation), normalised by its own lossless reference",
+                  "band-limited interpolation), Eq. 9 normalisation capped by its own lossless reference",
        .params = {{"currents", "choice", "-", "reflected",
                    "reflected (E_r, H_r only, reference code) | incident_and_reflected (Eq. 2)"},
                   {"window_fraction", "number", "1", "0.25",
                    "Gaussian window w(x) = exp(-x^2/s^2) with s = window_fraction * width"},
-                  {"normalisation", "choice", "-", "lossless",
-                   "lossless (power the same currents radiate with |r| set to 1 at every node) | eq9 (paper Eq. 9)"},
+                  {"normalisation", "choice", "-", "capped",
+                   "capped (Eq. 9, raised to the lossless reference where that radiates more) | lossless (power the "
+                   "same currents radiate with |r| set to 1 at every node) | eq9 (paper Eq. 9)"},
                   {"reflection_samples", "integer", "-", "1",
                    "local reflection and currents at this many sub-samples per segment, tent-weighted per node (1: nodes only)"},
                   {"far_field", "choice", "-", "chunked",
@@ -423,7 +430,7 @@ void register_approximate_solver(PluginRegistry& registry) {
       [](const ParamView& p, const PluginContext&) {
         const auto currents = p.choice_or("currents", kCurrents, "reflected");
         const double fraction = p.number_or("window_fraction", 0.25, Limits::positive());
-        const auto normalisation = p.choice_or("normalisation", kNormalisations, "lossless");
+        const auto normalisation = p.choice_or("normalisation", kNormalisations, "capped");
         const auto far_field = p.choice_or("far_field", kFarFields, "chunked");
         detail::ChunkingOptions chunking;
         chunking.chunked = far_field == "chunked";
@@ -432,8 +439,9 @@ void register_approximate_solver(PluginRegistry& registry) {
             currents == "reflected" ? ApproximateSolver::Currents::reflected
                                     : ApproximateSolver::Currents::incident_and_reflected,
             fraction,
-            normalisation == "lossless" ? ApproximateSolver::Normalisation::lossless
-                                      : ApproximateSolver::Normalisation::eq9,
+            normalisation == "capped"     ? ApproximateSolver::Normalisation::capped
+            : normalisation == "lossless" ? ApproximateSolver::Normalisation::lossless
+                                          : ApproximateSolver::Normalisation::eq9,
             chunking, samples);
       });
 }

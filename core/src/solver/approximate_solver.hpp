@@ -7,23 +7,26 @@
 // | currents        | choice | -    | reflected | `reflected` (E_r, H_r only, as the reference code)  |
 // |                 |        |      |           | or `incident_and_reflected` (Eq. 2 as printed)      |
 // | window_fraction | number | 1    | 0.25      | Gaussian window w(x) = exp(−x²/s²), s = fraction·W  |
-// | normalisation   | choice | -    | lossless  | `lossless`: FarField::incident_power is the power   |
-// |                 |        |      |           | the same currents radiate into the cone with the    |
-// |                 |        |      |           | local reflectance set to 1 (phases and polarization |
-// |                 |        |      |           | kept); `eq9`: paper Eq. 9                           |
+// | normalisation   | choice | -    | capped    | what FarField::incident_power (the normaliser) is:  |
+// |                 |        |      |           | `eq9` paper Eq. 9 (intercepted power); `lossless`   |
+// |                 |        |      |           | the cone power of the same currents with every      |
+// |                 |        |      |           | local reflectance raised to 1 (phase and            |
+// |                 |        |      |           | polarization kept); `capped` max of the two         |
 // | reflection_samples | int | -    | 1         | local reflection averaged over K sub-samples per    |
 // |                 |        |      |           | segment, tent-weighted per node (stacks that change |
 // |                 |        |      |           | abruptly along the top, e.g. platelet ends)         |
 // | far_field       | choice | -    | chunked   | `chunked` (band-limited interpolation per chunk) or |
 // |                 |        |      |           | `exact` (every node × direction); radiation.hpp     |
 //
-// Why `lossless` is the default (docs/architecture.md, docs/validation.md): with windowed
+// Why `capped` is the default (docs/architecture.md, docs/validation.md): with windowed
 // Kirchhoff currents, Eq. 9 lets a perfect flat mirror reflect 1.56 of the incident power at
-// (cos θ_i, cos φ_i) = (0.05, 0.05) and 0.68 at (1, 0.05) — the window's angular spread meets
-// the obliquity of the currents and the horizon — and real barbules up to 2.6. Dividing by the
-// same surface's result with every local reflectance raised to 1 cancels that error: a flat
-// mirror gives exactly 1, a flat stack its |r|², and the reflected fraction stays in [0, 1].
-// Cost: 12 more current columns in the far field (~+40 %).
+// (cos θ_i, cos φ_i) = (0.05, 0.05) — the window's angular spread meets the obliquity of the
+// currents — and real barbules up to 2.6. A lossless surface cannot reflect more than it
+// receives, so where the lossless reference radiates more than Eq. 9's power the approximation
+// is creating energy and the reference becomes the normaliser; elsewhere Eq. 9 stands (it was
+// the closer of the two to the full-wave reflected fraction on a rock-dove segment, issue 6).
+// R = P/max(Φ_eq9, P_ref) ≤ P/P_ref, which stays in [0, 1] on the whole grid. Cost: 12 more
+// current columns in the far field (~+40 %).
 #pragma once
 
 #include "plumage/plugin_registry.hpp"
@@ -35,11 +38,11 @@ namespace plumage {
 class ApproximateSolver final : public ScatteringSolver {
  public:
   enum class Currents { reflected, incident_and_reflected };
-  enum class Normalisation { lossless, eq9 };
-  static constexpr int kReferenceBins = 400;  // the pattern bins of the lossless normaliser
+  enum class Normalisation { capped, lossless, eq9 };
+  static constexpr int kReferenceBins = 400;  // the pattern bins of the lossless reference
 
   ApproximateSolver(Currents currents, double window_fraction,
-                    Normalisation normalisation = Normalisation::lossless,
+                    Normalisation normalisation = Normalisation::capped,
                     detail::ChunkingOptions chunking = {}, int reflection_samples = 1)
       : currents_(currents), window_fraction_(window_fraction), normalisation_(normalisation),
         chunking_(chunking), reflection_samples_(reflection_samples) {}
