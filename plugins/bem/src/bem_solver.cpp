@@ -61,8 +61,10 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
   sys->assembly_seconds = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
   if (options.method == BemOptions::Method::gmres) {
-    if (options.preconditioner_group > 0) {
-      sys->precond = std::make_unique<BlockJacobi>(sys->mesh, sys->Z, options.preconditioner_group);
+    if (options.preconditioner == BemOptions::Preconditioner::block_jacobi) {
+      sys->block_jacobi = std::make_unique<BlockJacobi>(sys->mesh, sys->Z, options.preconditioner_group);
+    } else if (options.preconditioner == BemOptions::Preconditioner::near_field) {
+      sys->near_field = std::make_unique<NearFieldLU>(sys->mesh, sys->Z, options.near_field_factor);
     }
   } else {
     sys->lu = std::make_unique<Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXcd>>>(sys->Z);  // in place
@@ -76,7 +78,8 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
   Eigen::MatrixXcd X = Eigen::MatrixXcd::Zero(B.rows(), B.cols());
   const Op A = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) { out.noalias() = Z * in; };
   const Op M = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) {
-    if (precond) precond->apply(in, out);
+    if (block_jacobi) block_jacobi->apply(in, out);
+    else if (near_field) near_field->apply(in, out);
     else out = in;
   };
   for (Eigen::Index c = 0; c < B.cols(); ++c) {

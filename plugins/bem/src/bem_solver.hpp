@@ -39,9 +39,13 @@ struct BemOptions {
   double gmres_tolerance = 1e-8;  // relative residual (method gmres)
   int gmres_restart = 300;
   int gmres_max_iterations = 5000;
-  // Vertices per block-Jacobi block; 0 = no preconditioner (default: block-Jacobi made the
-  // coated cylinder worse, 233 → 160…2583 iterations, NOTES.md §5).
-  int preconditioner_group = 0;
+  // GMRES preconditioner (NOTES.md §5): near_field = sparse LU of the entries coupling segments
+  // closer than near_field_factor·h (default); block_jacobi = LU of the diagonal blocks of
+  // preconditioner_group consecutive vertices; none.
+  enum class Preconditioner { none, block_jacobi, near_field };
+  Preconditioner preconditioner = Preconditioner::near_field;
+  double near_field_factor = 8.0;
+  int preconditioner_group = 16;
   QuadratureOptions quadrature;
 };
 
@@ -65,7 +69,8 @@ struct System {
   // mat-vec operator (dense for now).
   Eigen::MatrixXcd Z;
   std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXcd>>> lu;
-  std::unique_ptr<BlockJacobi> precond;
+  std::unique_ptr<BlockJacobi> block_jacobi;
+  std::unique_ptr<NearFieldLU> near_field;
   double assembly_seconds = 0, factor_seconds = 0;
   // Solves for every column of B (LU, or GMRES column by column); `iterations` gets the GMRES
   // iteration count per column (empty for LU).

@@ -1,6 +1,10 @@
 #include "gmres.hpp"
 
 #include <cmath>
+#include <unordered_set>
+
+#include "assembly.hpp"
+#include "pair_integrals.hpp"
 
 namespace plumage::bem {
 
@@ -104,5 +108,33 @@ void BlockJacobi::apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const
     for (std::size_t i = 0; i < idx.size(); ++i) out[idx[i]] = s[i];
   }
 }
+
+NearFieldLU::NearFieldLU(const Mesh& mesh, const Eigen::MatrixXcd& Z, double factor) {
+  const auto n = static_cast<long>(Z.rows());
+  std::unordered_set<long> seen;
+  std::vector<Eigen::Triplet<std::complex<double>>> t;
+  const int ns = static_cast<int>(mesh.segments.size());
+  for (int a = 0; a < ns; ++a) {
+    const Segment& A = mesh.segments[a];
+    for (int b = 0; b < ns; ++b) {
+      const Segment& B = mesh.segments[b];
+      if (a != b && segment_distance(A, B) > factor * std::max(A.h, B.h)) continue;
+      for (int r = 0; r < 8; ++r) {
+        const long i = global_index(mesh, A, r);
+        for (int c = 0; c < 8; ++c) {
+          const long j = global_index(mesh, B, c);
+          if (seen.insert(i * n + j).second) t.emplace_back(i, j, Z(i, j));
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<std::complex<double>> S(n, n);
+  S.setFromTriplets(t.begin(), t.end());
+  nnz_ = S.nonZeros();
+  lu_.analyzePattern(S);
+  lu_.factorize(S);
+}
+
+void NearFieldLU::apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const { out = lu_.solve(in); }
 
 }  // namespace plumage::bem

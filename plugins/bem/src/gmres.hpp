@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
+#include <Eigen/SparseLU>
 #include <functional>
 #include <vector>
 
@@ -32,6 +34,19 @@ class BlockJacobi {
  private:
   std::vector<std::vector<int>> blocks_;
   std::vector<Eigen::PartialPivLU<Eigen::MatrixXcd>> lu_;
+};
+
+// Near-field preconditioner: the entries of Z coupling segments closer than `factor`·max(h)
+// (the locally singular part of the operator), as a sparse matrix factorised by SparseLU.
+class NearFieldLU {
+ public:
+  NearFieldLU(const Mesh& mesh, const Eigen::MatrixXcd& Z, double factor);
+  void apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const;
+  long nonzeros() const { return nnz_; }
+
+ private:
+  Eigen::SparseLU<Eigen::SparseMatrix<std::complex<double>>> lu_;
+  long nnz_ = 0;
 };
 
 }  // namespace plumage::bem

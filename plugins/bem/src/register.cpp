@@ -23,7 +23,7 @@ void register_bem(plumage::Registrar& registrar) {
                    "beam (Gaussian beam with the approximate solver's footprint, per Phi_i) | plane_wave "
                    "(validation bodies; far field as 2D differential scattering width)"},
                   {"window_fraction", "number", "1", "0.25", "beam footprint exp(-x^2/s^2), s = fraction * width"},
-                  {"method", "choice", "-", "dense", "dense (LU) | gmres (block-Jacobi preconditioned GMRES; dense mat-vec for now)"},
+                  {"method", "choice", "-", "dense", "dense (LU) | gmres (near-field-LU preconditioned GMRES; dense mat-vec for now)"},
                   {"max_dense_unknowns", "integer", "1", "20000",
                    "refuse dense systems larger than this (memory: 16 N^2 bytes)"}}},
       [](const plumage::ParamView& p, const plumage::PluginContext&) {

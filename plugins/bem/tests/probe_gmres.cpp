@@ -11,6 +11,15 @@ int main(int argc, char** argv) {
   const int group = argc > 3 ? atoi(argv[3]) : 16, restart = argc > 4 ? atoi(argv[4]) : 200;
   const double lambda = 500;
   auto cs = testing::layered_cylinder({250.0, 350.0}, {Material::keratin(), Material::melanin()}, lambda, ppw);
+  if (argc > 6) {  // a lossless junction body (as in test_bem_solver)
+    cs = CrossSection{};
+    auto rect = [](double x0, double z0, double x1, double z1) {
+      return Polygon{{x0, z0}, {x1, z0}, {x1, z1}, {x0, z1}};
+    };
+    cs.regions.push_back({rect(-200, -150, 0, 150), Material::constant(1.55), RegionRole::body});
+    cs.regions.push_back({rect(0, -150, 160, 150), Material::constant({1.9, 0.0}), RegionRole::body});
+    cs.regions.push_back({rect(-80, 150, 60, 230), Material::constant(1.3), RegionRole::film});
+  }
   BemOptions o;
   o.points_per_wavelength = ppw;
   const auto prep = prepare_geometry(cs);
@@ -23,9 +32,13 @@ int main(int argc, char** argv) {
   BlockJacobi bj(sys->mesh, Z, group);
   const Op M = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) { bj.apply(in, out); };
   const Op I = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) { out = in; };
-  for (int pre = 0; pre < 2; ++pre) {
+  const double nf = argc > 5 ? atof(argv[5]) : 2.0;
+  NearFieldLU near(sys->mesh, Z, nf);
+  std::printf("near field: %ld non-zeros (%.1f per row)\n", near.nonzeros(), double(near.nonzeros()) / b.size());
+  const Op NF = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) { near.apply(in, out); };
+  for (int pre = 0; pre < 3; ++pre) {
     Eigen::VectorXcd x = Eigen::VectorXcd::Zero(b.size());
-    const auto r = gmres(A, pre ? M : I, b, x, tol, restart, 3000);
+    const auto r = gmres(A, pre == 0 ? I : pre == 1 ? M : NF, b, x, tol, restart, 3000);
     std::printf("N %d precond %d: iterations %d residual %.2e converged %d, |x - x_lu|/|x_lu| %.2e\n",
                 sys->mesh.unknowns(), pre, r.iterations, r.relative_residual, r.converged,
                 (x - xref).norm() / xref.norm());
