@@ -39,7 +39,7 @@ TEST_CASE("material lookup: nodes exact, linear fields exact everywhere", "[mate
       const double v = 0.3 + 0.4 * ct + 0.5 * cp;
       const MaterialNode n = m.lookup(0, ct, cp);
       CHECK(n.m_eff == Approx(0.5 * v).margin(1e-14));
-      CHECK(n.phi_eff == Approx(0.1 * v).margin(1e-14));
+      // φ fields are interpolated through their offsets from acos(cos φ_i): see the next test.
       CHECK(n.f_eff == Approx(v / (ct * cp)).epsilon(1e-13));  // stored premultiplied
       CHECK(n.correlation == Approx(v).margin(1e-14));
       CHECK(m.lookup(1, ct, cp).correlation == Approx(v + 1).margin(1e-14));
@@ -57,6 +57,21 @@ TEST_CASE("material lookup: smooth fields converge at third order", "[material]"
   }
   // h = 0.05, finite-difference slopes: O(h³) ≈ 1e-4 · derivatives of order 10.
   CHECK(worst < 5e-4);
+}
+
+TEST_CASE("material lookup: phi_eff that follows the nominal azimuth is reproduced", "[material]") {
+  // φ_eff = φ_i + a smooth offset: the offset is interpolated, so the steep acos near cos φ_i = 1
+  // costs nothing (interpolating φ_eff itself missed it by up to 4°).
+  FeatherMaterial m = grid_material([](double, double) { return 1.0; });
+  for (int i = 0; i <= 20; ++i) {
+    for (int j = 0; j <= 20; ++j) m.node(0, i, j).phi_eff = std::acos(j / 20.0) - 0.02 * (i / 20.0);
+  }
+  double worst = 0.0;
+  for (int k = 0; k <= 1000; ++k) {
+    const double cp = k / 1000.0, ct = 0.3 + 0.0004 * k;
+    worst = std::max(worst, std::abs(m.lookup(0, ct, cp).phi_eff - std::acos(cp) + 0.02 * ct));
+  }
+  CHECK(worst < 1e-12);
 }
 
 TEST_CASE("material wavelength bins: floor binning, clamped", "[material]") {

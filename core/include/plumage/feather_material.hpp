@@ -72,12 +72,14 @@ struct FeatherMaterial {
 
   // Bin of a wavelength (floor binning, clamped to the table), spec §4.9 step 7.
   std::size_t wavelength_bin(double lambda_nm) const;
-  // Parameters at (cos θ_i, cos φ_i) ∈ [0, 1]² for bin w: bicubic in the node grid; F's divided
-  // back by cos θ_i cos φ_i (0 at exact grazing); m clamped to [0.001, 1], φ to [−π/2, π/2];
-  // pol_share to [0, 1]; correlation ≥ 0. Absolute correlation length = correlation · l0.
+  // Parameters at (cos θ_i, cos φ_i) ∈ [0, 1]² for bin w: bicubic in the node grid (φ_eff and
+  // φ_sta through their offsets from the nominal φ_i = acos(cos φ_i)); F's divided back by
+  // cos θ_i cos φ_i (0 at exact grazing); m clamped to [0.001, 1], φ to [−π/2, π/2]; pol_share to
+  // [0, 1]; correlation ≥ 0. Absolute correlation length = correlation · l0.
   MaterialNode lookup(std::size_t w, double cos_theta_i, double cos_phi_i) const;
-  // Smallest absolute correlation length over the bins at normal incidence: the noise cut-off
-  // shared by every wavelength (spec §4.9 step 5).
+  // Smallest *absolute* correlation length (correlation · l0, direction cosine) over the bins at
+  // normal incidence. (The noise domain of spec §4.9 step 5 uses the relative value; FeatherBsdf
+  // computes that itself.)
   double min_correlation_length() const;
 };
 

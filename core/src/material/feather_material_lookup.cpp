@@ -30,7 +30,16 @@ MaterialNode FeatherMaterial::lookup(std::size_t w, double cos_theta_i, double c
   const int i = std::min(static_cast<int>(std::floor(grid * ct)), grid - 1);
   const int j = std::min(static_cast<int>(std::floor(grid * cp)), grid - 1);
   const auto hu = hermite(grid * ct - i), hv = hermite(grid * cp - j);
-  auto q = [&](int a, int b, double MaterialNode::*field) { return node(w, a, b).*field; };
+  // φ_eff and φ_sta follow the nominal azimuth φ_i = acos(cos φ_i) closely (exactly at grazing,
+  // spec §4.2), whose slope is infinite at cos φ_i = 1: interpolating them directly misses it by
+  // up to 4°. Their offsets from the node's φ_i are smooth; interpolate those and add φ_i back.
+  auto is_phi = [](double MaterialNode::*field) {
+    return field == &MaterialNode::phi_eff || field == &MaterialNode::phi_sta;
+  };
+  auto q = [&](int a, int b, double MaterialNode::*field) {
+    const double v = node(w, a, b).*field;
+    return is_phi(field) ? v - std::acos(static_cast<double>(b) / grid) : v;
+  };
   // Finite-difference derivatives in index units (central inside, one-sided at the borders).
   auto span = [&](int k) { return std::pair{std::max(k - 1, 0), std::min(k + 1, grid)}; };
   MaterialNode out;
@@ -50,7 +59,7 @@ MaterialNode FeatherMaterial::lookup(std::size_t w, double cos_theta_i, double c
                  hu[2 + a] * hv[2 + b] * fuv;
       }
     }
-    out.*field = value;
+    out.*field = is_phi(field) ? value + std::acos(cp) : value;
   }
   const double w_in = ct * cp;
   out.f_eff = w_in > 0.0 ? std::max(out.f_eff, 0.0) / w_in : 0.0;
