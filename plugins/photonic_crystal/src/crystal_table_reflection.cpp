@@ -136,7 +136,10 @@ void CrystalTableReflection::build_or_load() const {
     std::cerr << "photonic_crystal: building the " << (preview ? "preview " : "") << "reflection table of "
               << cell_.name << " (" << grid.lambda_nm.size() << " x " << grid.cos_theta.size() << " x "
               << grid.cos_phi.size() << " entries) into " << file.string()
-              << (preview ? "" : "; the production table takes ~10-15 min on 2 cores, once (cached)") << "\n";
+              << (grid.lambda_nm.size() * grid.cos_theta.size() * grid.cos_phi.size() >= 10000
+                      ? "; a production-size table takes ~10-15 min on 2 cores, once (cached)"
+                      : "")
+              << "\n";
     ReflectionTable t = (preview ? preview_builder_ : builder_)->build(cell_, grid, {});
     t.metadata().config_hash = config_hash_;
     fs::create_directories(file.parent_path());
