@@ -220,7 +220,8 @@ void run(AppContext& context, const Options& o) {
     if (!quiet) {
       std::cerr << s.label << ": " << s.fidelity << ", " << s.lambda_nm.size() << " wavelengths x " << s.grid << " x "
                 << s.grid << " incident nodes, " << s.instances << " instances";
-      if (parts > 1) std::cerr << (mpi.size() > 1 ? ", rank 1 of " : ", shard ") << part + 1 << "/" << parts;
+      if (mpi.size() > 1) std::cerr << ", " << parts << " MPI ranks";
+      else if (parts > 1) std::cerr << ", shard " << part + 1 << "/" << parts;
       if (!done.empty()) std::cerr << ", resuming (" << done.size() << " groups already in " << journal.string() << ")";
       std::cerr << "\n";
     }
