@@ -124,8 +124,10 @@ void CrystalTableReflection::build_or_load() const {
       throw Error("photonic_crystal: reflection table " + table_file_ + " of " + crystal_file_ +
                   " is not built and PLUMAGE_TABLE_BUILD=never; build it by running once without "
                   "that setting (or use `plumage table build` and give the file as table:)");
-    const bool preview = policy == "preview";
-    if (!preview && policy != "build")
+    // preview replaces only builds larger than the preview grid (4 × 5 × 5); smaller ones run as asked.
+    const bool preview =
+        policy == "preview" && grid_.lambda_nm.size() * grid_.cos_theta.size() * grid_.cos_phi.size() > 4 * 5 * 5;
+    if (policy != "preview" && policy != "build")
       throw Error("photonic_crystal: PLUMAGE_TABLE_BUILD must be build, preview or never (got '" + policy + "')");
     const fs::path file = preview ? preview_file_ : table_file_;
     if (fs::exists(file)) {

@@ -5,8 +5,8 @@
 // With `crystal:` the table is looked up in the cache when the model is created and, if missing,
 // built on the first reflect() (so loading a species config never runs the FDTD). The environment
 // variable PLUMAGE_TABLE_BUILD controls that build: unset or "build" (default) builds as
-// configured; "preview" builds a small preview-fidelity table instead (cached under its own key,
-// for tests and quick looks); "never" refuses with a message naming the missing table. When the
+// configured; "preview" builds a small preview-fidelity table (4 λ × 5 × 5) instead of any larger
+// one (cached under its own key, for tests and quick looks); "never" refuses with a message naming the missing table. When the
 // variable is unset and the process runs under CTest (CTEST_INTERACTIVE_DEBUG_MODE is set), the
 // default is "preview", so the default test suite never starts a production build.
 #pragma once
