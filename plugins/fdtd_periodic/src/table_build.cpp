@@ -213,6 +213,7 @@ ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const Ta
         entry_sample[idx(l, i, j)] = samples.size();
         samples.push_back({l, t, p});
       }
+  const std::size_t first_anchor = samples.size();
   for (std::size_t l = 0; l < NL; ++l)
     for (std::size_t i = 0; i < NT; ++i)
       for (std::size_t j = 0; j < NP; ++j) {
@@ -339,7 +340,10 @@ ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const Ta
         acc.ss += c.w[k] * r.ss, acc.sp += c.w[k] * r.sp, acc.ps += c.w[k] * r.ps, acc.pp += c.w[k] * r.pp;
         wsum += c.w[k];
       }
-      if (wsum < 0.25) continue;  // too little support: treated as not simulated
+      // Too little support: an entry is then treated as not simulated (continued like those below
+      // kz_min). An anchor sits next to the invalid region by construction, so any valid corner
+      // is used (Z is smooth; the production table otherwise left 1634 entries at −I).
+      if (wsum < (s >= first_anchor ? 1e-9 : 0.25)) continue;
       if (orders) ++other_orders;
       acc.ss /= wsum, acc.sp /= wsum, acc.ps /= wsum, acc.pp /= wsum;
       value[s] = jones_of(acc, std::cos(samples[s].theta) * std::cos(samples[s].phi));
