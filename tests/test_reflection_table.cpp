@@ -88,3 +88,30 @@ TEST_CASE("reflection table file round trip and checksum", "[table]") {
   CHECK_THROWS_WITH(ReflectionTable::load(file), Catch::Contains("checksum"));
   std::filesystem::remove(file);
 }
+
+TEST_CASE("reflection table stays passive where the interpolation overshoots toward grazing", "[table]") {
+  // A lossless-like crystal: |r| = 1 at every node, the phase turning quickly as k_z → 0 (as a
+  // real stack's does near the grazing node). Component-wise cubic interpolation between such
+  // nodes and the analytic diag(−1, −1) node overshoots |r| = 1; the query must not.
+  TableGrid g = TableGrid::uniform(400, 700, 2, 5, 5);
+  ReflectionTable t(g, {"test-crystal", 190.0, "0123456789abcdef", 10.0, "unit test", ""});
+  for (std::size_t l = 0; l < 2; ++l)
+    for (std::size_t i = 0; i < 5; ++i)
+      for (std::size_t j = 0; j < 5; ++j) {
+        const double kz = g.cos_theta[i] * g.cos_phi[j];
+        const Complex r = std::polar(1.0, kPi - 3.0 * kz);
+        t.at(l, i, j) = {r, 0.0, 0.0, r * Complex(0.0, 1.0)};
+      }
+  // Without the projection this grid reaches σ_max = 1.133 (measured by disabling it).
+  double queried = 0.0;
+  for (int a = 1; a < 100; ++a)
+    for (int b = 1; b < 100; ++b) {
+      const double ct = a / 100.0, cp = b / 100.0;
+      queried = std::max(queried, largest_singular_value(t.query(550.0, std::acos(ct), std::acos(cp))));
+    }
+  INFO("largest singular value over the queried grid " << queried);
+  CHECK(queried <= 1.0 + 1e-12);
+  // Nodes themselves are untouched (σ = 1 exactly there).
+  CHECK(largest_singular_value(t.query(400.0, std::acos(g.cos_theta[2]), std::acos(g.cos_phi[3]))) ==
+        Approx(1.0).epsilon(1e-12));
+}

@@ -15,7 +15,9 @@
 //    η0H → −M η0H (axial), so a_s → −a_s, a_p → a_p for incident and reflected alike:
 //    J(θ, −φ) = D J(θ, φ) D with D = diag(−1, 1), i.e. ss, pp unchanged, sp, ps negated;
 //  * interpolation: cubic Hermite (Catmull-Rom with non-uniform spacing) in cos θ
-//    and cos φ, linear in λ (clamped at the λ ends), component-wise on Re and Im.
+//    and cos φ, linear in λ (clamped at the λ ends), component-wise on Re and Im;
+//  * passivity: an interpolated J whose largest singular value exceeds 1 (cubic overshoot near
+//    the grazing node; the (E·ŝ, η0H·ŝ) basis is power-normalised) is scaled back to 1.
 #pragma once
 
 #include <array>
@@ -91,6 +93,9 @@ class ReflectionTable {
   std::vector<JonesReflection> data_;
   std::vector<double> ext_cos_theta_, ext_cos_phi_;  // axes with the analytic node at 0 prepended
 };
+
+// Largest singular value of a Jones matrix: its largest power reflectance over polarizations.
+double largest_singular_value(const JonesReflection& j);
 
 // Jones matrix of the grazing limit: diag(−1, −1).
 inline JonesReflection grazing_jones() { return {{-1.0, 0.0}, {0.0, 0.0}, {0.0, 0.0}, {-1.0, 0.0}}; }

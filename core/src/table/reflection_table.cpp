@@ -219,12 +219,29 @@ JonesReflection ReflectionTable::query_first_quadrant(double lambda_nm, double c
   return out;
 }
 
+double largest_singular_value(const JonesReflection& j) {
+  // Largest eigenvalue of the Hermitian M = J^H J, in the form without cancellation:
+  // λ_max = (m11 + m22)/2 + sqrt(((m11 − m22)/2)² + |m12|²).
+  const double m11 = std::norm(j.ss) + std::norm(j.ps), m22 = std::norm(j.sp) + std::norm(j.pp);
+  const Complex m12 = std::conj(j.ss) * j.sp + std::conj(j.ps) * j.pp;
+  const double half = 0.5 * (m11 - m22);
+  return std::sqrt(0.5 * (m11 + m22) + std::sqrt(half * half + std::norm(m12)));
+}
+
 JonesReflection ReflectionTable::query(double lambda_nm, double theta_rad, double phi_local_rad) const {
   if (data_.empty()) throw Error("reflection table: query on an empty table");
   const double ct = std::cos(theta_rad), cp = std::cos(phi_local_rad);
   if (ct < -1e-12 || cp < -1e-12) return {};            // back-facing
   if (ct < 1e-12 || cp < 1e-12) return grazing_jones();  // exact grazing limit
   JonesReflection r = query_first_quadrant(lambda_nm, std::min(ct, 1.0), std::min(cp, 1.0));
+  // Passivity: the cubic interpolation toward the grazing node (|r| = 1) can overshoot; a
+  // passive surface reflects at most what it receives, i.e. σ_max(J) ≤ 1 in this
+  // power-normalised (E·ŝ, η0H·ŝ) basis. An overshoot is scaled back to 1.
+  const double sigma = largest_singular_value(r);
+  if (sigma > 1.0) {
+    const double k = 1.0 / sigma;
+    r.ss *= k, r.sp *= k, r.ps *= k, r.pp *= k;
+  }
   if (std::sin(phi_local_rad) < 0.0) {  // mirror x → −x: J → D J D, D = diag(−1, 1)
     r.sp = -r.sp;
     r.ps = -r.ps;
