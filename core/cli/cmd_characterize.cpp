@@ -284,7 +284,7 @@ void run(AppContext& context, const Options& o) {
       }
       if (!o.record.empty()) {
         std::ostringstream md;
-        md << "## characterize " << s.label << " (" << s.fidelity << ")\n\n"
+        md << std::fixed << "## characterize " << s.label << " (" << s.fidelity << ")\n\n"
            << s.lambda_nm.size() << " wavelengths x " << s.grid << " x " << s.grid << " incident nodes, " << s.instances
            << " instances, " << s.pattern_samples << " pattern + " << s.projected_samples << " projected directions.\n\n"
            << "| machine | command | date | wall | CPU | groups computed | file size |\n|---|---|---|---|---|---|---|\n"
