@@ -3,6 +3,8 @@
 // input exits 2 (nothing written), a corrupt material fails with an error naming the file.
 #include <catch2/catch.hpp>
 
+#include "cli_run.hpp"
+
 #include <sys/wait.h>
 
 #include <cstdio>
@@ -15,27 +17,13 @@
 #include "plumage/image.hpp"
 
 namespace fs = std::filesystem;
+using plumage::cli_test::Result;
+using plumage::cli_test::run;
+using plumage::cli_test::run_command;
 using namespace plumage;
 using namespace plumage::testing;
 
 namespace {
-
-struct Result {
-  int status = -1;
-  std::string output;
-};
-
-Result run(const std::string& args) {
-  const std::string command = std::string(PLUMAGE_EXE) + " " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 fs::path scratch() {
   fs::path dir = fs::temp_directory_path() / "plumage-test-brdf-cli";

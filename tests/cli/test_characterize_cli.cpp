@@ -4,6 +4,8 @@
 // merge with a missing shard writes nothing; and (tag [mpi]) 2 MPI ranks give the same bytes.
 #include <catch2/catch.hpp>
 
+#include "cli_run.hpp"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -17,26 +19,11 @@
 #include <thread>
 
 namespace fs = std::filesystem;
+using plumage::cli_test::Result;
+using plumage::cli_test::run;
+using plumage::cli_test::run_command;
 
 namespace {
-
-struct Result {
-  int status = -1;
-  std::string output;
-};
-
-Result run_command(const std::string& command) {
-  Result r;
-  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-Result run(const std::string& args) { return run_command(std::string(PLUMAGE_EXE) + " " + args); }
 
 fs::path scratch(const std::string& name) {
   fs::path dir = fs::temp_directory_path() / "plumage-test-characterize" / name;

@@ -2,6 +2,8 @@
 // written on failure, results that agree with closed forms.
 #include <catch2/catch.hpp>
 
+#include "cli_run.hpp"
+
 #include <sys/wait.h>
 
 #include <cmath>
@@ -11,25 +13,11 @@
 #include <sstream>
 
 namespace fs = std::filesystem;
+using plumage::cli_test::Result;
+using plumage::cli_test::run;
+using plumage::cli_test::run_command;
 
 namespace {
-
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-  const std::string command = std::string(PLUMAGE_EXE) + " " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 fs::path scratch() {
   fs::path dir = fs::temp_directory_path() / "plumage-test-cli";

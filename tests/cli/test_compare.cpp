@@ -5,6 +5,8 @@
 // exact series, which checks the normalisation stated in the CSV header.
 #include <catch2/catch.hpp>
 
+#include "cli_run.hpp"
+
 #include <sys/wait.h>
 
 #include <cmath>
@@ -20,25 +22,11 @@
 #endif
 
 namespace fs = std::filesystem;
+using plumage::cli_test::Result;
+using plumage::cli_test::run;
+using plumage::cli_test::run_command;
 
 namespace {
-
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-  const std::string command = std::string(PLUMAGE_EXE) + " " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 fs::path scratch(const std::string& name) {
   fs::path dir = fs::temp_directory_path() / "plumage-test-compare" / name;

@@ -5,6 +5,8 @@
 // runs; bad input exits 2 naming file, line and field; nothing is half-written on failure.
 #include <catch2/catch.hpp>
 
+#include "cli_run.hpp"
+
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -19,25 +21,11 @@
 #include <thread>
 
 namespace fs = std::filesystem;
+using plumage::cli_test::Result;
+using plumage::cli_test::run;
+using plumage::cli_test::run_command;
 
 namespace {
-
-struct Result {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Result run(const std::string& args) {
-  const std::string command = std::string(PLUMAGE_EXE) + " " + args + " 2>&1";
-  Result r;
-  FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  while (std::size_t n = fread(buffer, 1, sizeof buffer, pipe)) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
 
 fs::path scratch() {
   fs::path dir = fs::temp_directory_path() / "plumage-test-table-cli";
