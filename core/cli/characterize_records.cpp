@@ -12,6 +12,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "plumage/checksum.hpp"
 #include "plumage/error.hpp"
 #include "plumage/fitter.hpp"
 #include "plumage/random.hpp"
@@ -25,15 +26,6 @@ constexpr std::uint32_t kRecordMagic = 0x524d4c50;  // "PLMR"
 // Bumped whenever the simulation or fitting code changes what a record holds, so that a journal
 // or shard from older code is never mixed with new records.
 constexpr int kFitRevision = 1;
-
-std::uint64_t fnv1a(std::string_view bytes) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 template <class T>
 void put(std::string& s, T v) {

@@ -1,3 +1,4 @@
+#include "plumage/checksum.hpp"
 #include "plumage/config_document.hpp"
 
 #include <yaml-cpp/yaml.h>
@@ -29,11 +30,7 @@ ParamView make_root_view(const YAML::Node& node, const std::string& file) {
 }
 
 std::string fnv1a_hex(std::string_view bytes) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
+  std::uint64_t h = fnv1a(bytes);
   static const char* digits = "0123456789abcdef";
   std::string out(16, '0');
   for (int i = 15; i >= 0; --i) {

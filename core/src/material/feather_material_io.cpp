@@ -6,6 +6,7 @@
 #include <iterator>
 #include <string_view>
 
+#include "plumage/checksum.hpp"
 #include "plumage/atomic_file.hpp"
 #include "plumage/error.hpp"
 #include "plumage/feather_material.hpp"
@@ -16,15 +17,6 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'L', 'U', 'M', 'P', 'L', 'M', '\0'};
 constexpr std::size_t kMaxString = 1 << 16;
-
-std::uint64_t fnv1a(std::string_view bytes) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 struct Writer {
   std::string bytes;

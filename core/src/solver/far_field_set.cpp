@@ -1,3 +1,4 @@
+#include "plumage/checksum.hpp"
 #include "plumage/far_field_set.hpp"
 
 #include <cstring>
@@ -48,15 +49,6 @@ class Reader {
   std::filesystem::path file_;
   std::size_t pos_ = 0;
 };
-
-std::uint64_t fnv1a(std::string_view bytes) {
-  std::uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : bytes) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 }  // namespace
 

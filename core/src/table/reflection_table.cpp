@@ -1,3 +1,4 @@
+#include "plumage/checksum.hpp"
 #include "plumage/reflection_table.hpp"
 
 #include <algorithm>
@@ -20,12 +21,8 @@ constexpr std::uint32_t kVersion = 1;
 constexpr std::uint32_t kByteOrder = 0x01020304u;
 constexpr const char* kUnits = "lambda:nm; axes:cos_theta,cos_phi_local; entry:jones(s,p) ss,sp,ps,pp re/im float64";
 
-std::uint64_t fnv1a(const char* data, std::size_t n, std::uint64_t h = 0xcbf29ce484222325ULL) {
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= static_cast<unsigned char>(data[i]);
-    h *= 0x100000001b3ULL;
-  }
-  return h;
+std::uint64_t fnv1a(const char* data, std::size_t n, std::uint64_t h = kFnv1aOffset) {
+  return plumage::fnv1a(std::string_view(data, n), h);
 }
 
 void check_axis(const std::vector<double>& a, const char* name, bool cosine) {
