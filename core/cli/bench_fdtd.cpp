@@ -5,6 +5,10 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <optional>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -27,11 +31,13 @@ struct FdtdBench {
   bool skip_table = false;
   double kz_min = 0.25;  // entries with cos θ cos φ below this are continued to grazing, not simulated
   std::string record;
+  std::string out;  // also save the whole table here (e.g. the lazy cache's production file)
 };
 
 struct Timed {
   double wall = 0, cpu = 0;
   std::string notes;
+  std::optional<ReflectionTable> table;
 };
 
 Timed timed_build(AppContext& context, const CrystalCell& cell, const std::string& params,
@@ -42,7 +48,7 @@ Timed timed_build(AppContext& context, const CrystalCell& cell, const std::strin
   std::unique_ptr<Progress> bar;
   const auto t0 = std::chrono::steady_clock::now();
   const std::clock_t c0 = std::clock();
-  const ReflectionTable t = builder->build(cell, grid, [&](std::size_t d, std::size_t n, std::string_view what) {
+  ReflectionTable t = builder->build(cell, grid, [&](std::size_t d, std::size_t n, std::string_view what) {
     if (!progress) return;
     if (!bar) bar = std::make_unique<Progress>(std::string(what), n, context.quiet);
     bar->advance(d);
@@ -51,6 +57,7 @@ Timed timed_build(AppContext& context, const CrystalCell& cell, const std::strin
   r.cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   r.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.notes = t.metadata().notes + "; resolution " + std::to_string(t.metadata().resolution_nm) + " nm";
+  r.table = std::move(t);
   return r;
 }
 
@@ -98,6 +105,16 @@ void bench_fdtd(AppContext& context, const FdtdBench& b) {
     item << "table " << b.n_lambda << " x " << b.n_theta << " x " << b.n_phi << " x 2 pols, kz_min " << b.kz_min;
     md << head << " | " << item.str() << " | " << full.wall << " | " << full.cpu << " | " << full.notes
        << " | <= 900 s |\n";
+    if (!b.out.empty()) {
+      // The same table the photonic_crystal plug-in builds on demand (same builder, grid and
+      // defaults), with the crystal file's content hash as the lazy cache stores it.
+      ReflectionTable t = *full.table;
+      std::ifstream in(b.config, std::ios::binary);
+      t.metadata().config_hash = fnv1a_hex(std::string(std::istreambuf_iterator<char>(in), {}));
+      std::filesystem::create_directories(std::filesystem::absolute(b.out).parent_path());
+      t.save(b.out);
+      std::cerr << "wrote " << b.out << "\n";
+    }
     std::cout << item.str() << ": " << full.wall << " s wall, " << full.cpu << " s CPU (" << full.notes << ")\n";
   }
   if (!b.record.empty()) {
@@ -117,6 +134,7 @@ void add_bench_fdtd_command(CLI::App& bench, AppContext& context) {
   cmd->add_option("--n-phi", b->n_phi, "Table cos phi nodes")->capture_default_str();
   cmd->add_option("--kz-min", b->kz_min, "Table entries with cos(theta)cos(phi) below this are continued to the grazing limit (impedance form), not simulated")->capture_default_str();
   cmd->add_flag("--skip-table", b->skip_table, "Only the single solve and the broadband run");
+  cmd->add_option("--out", b->out, "Also save the whole table to this file (.plt), e.g. the lazy cache's build/cache/tables/<crystal>-<key>.plt")->capture_default_str();
   cmd->add_option("--record", b->record, "Markdown file to record the result in (e.g. docs/benchmarks.md)");
   cmd->callback([&context, b] { bench_fdtd(context, *b); });
 }
