@@ -12,7 +12,8 @@
 // `plumage brdf check FILE.plm [--transmission T]`: white furnace of the BSDF built from the
 // material, at every table entry (nodes with cos θ_i, cos φ_i > 0) and cell centre of every bin:
 // A_r (the fitter's accurate hemisphere integral of the lobe the BSDF evaluates) + T ≤ 1. Also
-// reports the material's own albedo at the nodes before the BSDF's clamp. Exit 1 on a violation.
+// reports the material's own albedo at the nodes before the BSDF's clamp, and how often that clamp
+// (the safety net between nodes) acts at the nodes and cell centres. Exit 1 on a violation.
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -201,7 +202,7 @@ void check(const CheckOptions& o) {
   const std::size_t bins = material->lambda_nm.size();
   struct Worst {
     double total = 0.0, raw = 0.0;
-    int over_raw = 0;
+    int over_raw = 0, clamped_nodes = 0, clamped_centres = 0;
   };
   std::vector<Worst> per_bin(bins);
   tbb::parallel_for(std::size_t{0}, bins, [&](std::size_t w) {
@@ -211,6 +212,7 @@ void check(const CheckOptions& o) {
       const FeatherBsdf::Incident in = bsdf.incident_bin(w, wi);
       const double a = in.reflects ? hemisphere_lobe_integral(in.mean, in.theta_abs) : 0.0;
       r.total = std::max(r.total, a + in.transmission);
+      if (in.reflects && in.energy_scale < 1.0) ++(node ? r.clamped_nodes : r.clamped_centres);
       if (node && in.energy_scale > 0.0) {
         r.raw = std::max(r.raw, a / in.energy_scale);
         r.over_raw += a / in.energy_scale > 1.0;
@@ -222,7 +224,7 @@ void check(const CheckOptions& o) {
       for (int j = 0; j < g; ++j) visit((i + 0.5) / g, (j + 0.5) / g, false);
   });
   double worst = 0.0, worst_raw = 0.0;
-  int over = 0;
+  int over = 0, clamped_nodes = 0, clamped_centres = 0;
   std::printf("bin  lambda_nm  T_w      max(A_r+T)  material max A_r (nodes)  nodes with A_r > 1\n");
   for (std::size_t w = 0; w < bins; ++w) {
     std::printf("%3zu  %9.1f  %.4f   %.5f     %.5f                   %d\n", w, material->lambda_nm[w],
@@ -230,10 +232,14 @@ void check(const CheckOptions& o) {
     worst = std::max(worst, per_bin[w].total);
     worst_raw = std::max(worst_raw, per_bin[w].raw);
     over += per_bin[w].over_raw;
+    clamped_nodes += per_bin[w].clamped_nodes;
+    clamped_centres += per_bin[w].clamped_centres;
   }
   std::printf("worst A_r + T over %zu table entries and cell centres: %.5f; material: %d nodes with A_r > 1 "
-              "(worst %.5f), clamped by the BSDF\n",
+              "(worst %.5f)\n",
               bins * static_cast<std::size_t>(g * g + g * g), worst, over, worst_raw);
+  std::printf("BSDF reflection clamp acts at %d of %zu nodes and %d of %zu cell centres\n", clamped_nodes,
+              bins * static_cast<std::size_t>(g * g), clamped_centres, bins * static_cast<std::size_t>(g * g));
   if (worst > 1.0) throw Error(o.file + ": white furnace violated: A_r + T = " + std::to_string(worst));
 }
 

@@ -1,7 +1,8 @@
 // `plumage characterize` and `plumage merge` end to end on a tiny grid (rock dove, 3 instances,
 // a few wavelengths and incident nodes: seconds): shards merged are bit-identical to a single run,
 // a run killed with SIGKILL resumes redoing only the groups in flight, bad input exits 2, a
-// merge with a missing shard writes nothing; and (tag [mpi]) 2 MPI ranks give the same bytes.
+// merge with a missing shard writes nothing, a real material keeps A_r <= 1 at its nodes; and (tag
+// [mpi]) 2 MPI ranks give the same bytes.
 #include <catch2/catch.hpp>
 
 #include "cli_run.hpp"
@@ -131,6 +132,29 @@ TEST_CASE("characterize: a run killed with SIGKILL resumes, redoing only the gro
   CHECK(already + computed == 12);  // 3 wavelengths × 4 rows: nothing done twice
   CHECK(bytes(out) == bytes(dir / "ref.plm"));
   CHECK(!fs::exists(journal));
+}
+
+// White furnace of a real material (issue 7): the grazing corner of the incident grid, where the
+// smoothing of m_eff (spec §4.7) used to lift the stored lobe's albedo above the simulated energy
+// E (this run: A_r = 1.21 at (cos θ_i, cos φ_i) = (0.1, 0.1) before the renormalisation, E = 0.99).
+// The material itself must have A_r ≤ 1 at every node, so the BSDF's clamp never acts there.
+TEST_CASE("characterize: the material's own albedo is <= 1 at every node (white furnace)", "[characterize]") {
+  const fs::path dir = scratch("furnace");
+  const fs::path plm = dir / "rd.plm";
+  const Result made = run("characterize " + kConfig + " --fidelity preview --grid 10 --lambda-nm 520 --instances 4 "
+                          "--noise-functions 8 --out " + plm.string());
+  INFO(made.output);
+  REQUIRE(made.status == 0);
+  const Result check = run("brdf check " + plm.string());
+  INFO(check.output);
+  CHECK(check.status == 0);
+  std::smatch m;
+  REQUIRE(std::regex_search(check.output, m, std::regex("material: (\\d+) nodes with A_r > 1 \\(worst ([0-9.]+)\\)")));
+  CHECK(std::stoi(m[1]) == 0);
+  CHECK(std::stod(m[2]) <= 1.0);
+  REQUIRE(std::regex_search(check.output, m, std::regex("clamp acts at (\\d+) of (\\d+) nodes")));
+  CHECK(std::stoi(m[1]) == 0);
+  CHECK(std::stoi(m[2]) == 100);
 }
 
 TEST_CASE("characterize under mpirun with 2 ranks is bit-identical to a single run", "[mpi]") {

@@ -46,6 +46,10 @@ double hemisphere_lobe_integral(const Lobe& lobe, double theta_i_rad);
 // The spec's reference rule: n × n midpoints in (θ_o, φ_o) ∈ (−π/2, π/2)², dω = cos θ_o dθ dφ.
 double hemisphere_lobe_integral_midpoint(const Lobe& lobe, double theta_i_rad, int n);
 
+// Σ_k L(ω_o,k) over `midpoints` midpoints in φ_o ∈ (−π/2, π/2) on the specular cone
+// ω_o = (cos θ_i sin φ_o, −sin θ_i, cos θ_i cos φ_o): the cone sums of the F_sta ratio (spec §4.4).
+double cone_lobe_sum(const Lobe& lobe, double theta_i_rad, int midpoints = 2000);
+
 // ---- correlation length and autocorrelation (spec §4.6, §4.8) ----------------------------------
 
 // Columns of equal length N. Circular autocovariance of each mean-removed column (divisor N − 1),
@@ -85,7 +89,13 @@ UnitFit fit_unit(const UnitInput& input);
 
 // `material.nodes` holds fitted values at i, j ≥ 1 with correlation = absolute l. Sets l0 from
 // the first bin's normal-incidence node, divides correlation by it, fills the grazing row i = 0
-// and column j = 0 per spec §4.7 and smooths m_eff, m_sta and correlation.
+// and column j = 0 per spec §4.7 and smooths m_eff, m_sta and correlation. Then (a departure
+// from the spec, which smooths m after F was normalised) every fitted node's F_eff is
+// renormalised so that the stored lobe keeps the fitted directional albedo,
+// ∫ L dω (smoothed m) = ∫ L dω (fitted m) = E (Eq. 12, the accurate hemisphere integral), and
+// F_sta is recomputed by the §4.4 cone-sum ratio with the stored lobes. Without this, smoothing
+// lowered m at the grazing nodes by ~10 % and raised A_r there by up to 20 % (A_r = 1.17 on the
+// rock-dove preview material, docs/validation.md "BSDF").
 void assemble_tables(FeatherMaterial& material);
 
 // `count` functions of `acf.size()` samples with autocorrelation `acf` (a full circular period,

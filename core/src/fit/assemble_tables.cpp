@@ -1,6 +1,9 @@
 // Table assembly (spec §4.7 steps 1–2): reference correlation length, grazing extrapolation of
 // row i = 0 (cos θ_i = 0) and column j = 0 (cos φ_i = 0), Gaussian smoothing of m and l.
-// Step 3 (bicubic Hermite patches) is FeatherMaterial::lookup.
+// Step 3 (bicubic Hermite patches) is FeatherMaterial::lookup. Afterwards the F's of the fitted
+// nodes are renormalised to the smoothed m (fitter.hpp, assemble_tables).
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -61,6 +64,38 @@ void smooth(FeatherMaterial& m, std::size_t w, Field f) {
   }
 }
 
+// Paper Eq. 12 makes the fitted lobe's directional albedo ∫ L dω equal the simulated reflected
+// energy E; F_eff was normalised with the *fitted* m_eff, and smoothing then changes m_eff. At
+// grazing incidence the integral is very sensitive to m (the horizon cuts the lobe and G1
+// falls), so the smoothed table's albedo drifted from E (up to A_r = 1.17 > 1 measured on the
+// rock-dove preview). Restore ∫ L dω = E at every fitted node with the smoothed m: F_eff scales by
+// I(fitted m)/I(smoothed m), both by the accurate hemisphere integral (the rule of the fitter's
+// normalisation, so the restored albedo is E to rounding). F_sta follows from its definition
+// (spec §4.4): F_sta ∝ F_eff · Σ_cone L_eff / Σ_cone L_sta with the stored lobes.
+void renormalise_scales(FeatherMaterial& m, std::size_t w, const std::vector<MaterialNode>& fitted) {
+  const int n = m.grid + 1;
+  for (int i = 1; i <= m.grid; ++i) {
+    const double theta = std::acos(static_cast<double>(i) / m.grid);
+    for (int j = 1; j <= m.grid; ++j) {
+      const MaterialNode& raw = fitted[static_cast<std::size_t>(i * n + j)];
+      MaterialNode& out = m.node(w, i, j);
+      if (out.m_eff != raw.m_eff && raw.f_eff > 0.0) {
+        const double before = hemisphere_lobe_integral(Lobe{raw.m_eff, raw.phi_eff, m.sigma, 1.0}, theta);
+        const double after = hemisphere_lobe_integral(Lobe{out.m_eff, out.phi_eff, m.sigma, 1.0}, theta);
+        if (before > 0.0 && after > 0.0) out.f_eff = raw.f_eff * (before / after);
+      }
+      if ((out.m_eff != raw.m_eff || out.m_sta != raw.m_sta) && raw.f_sta > 0.0 && raw.f_eff > 0.0) {
+        const double eff_before = cone_lobe_sum(Lobe{raw.m_eff, raw.phi_eff, m.sigma, 1.0}, theta);
+        const double eff_after = cone_lobe_sum(Lobe{out.m_eff, out.phi_eff, m.sigma, 1.0}, theta);
+        const double sta_before = cone_lobe_sum(Lobe{raw.m_sta, raw.phi_sta, m.sigma, 1.0}, theta);
+        const double sta_after = cone_lobe_sum(Lobe{out.m_sta, out.phi_sta, m.sigma, 1.0}, theta);
+        if (eff_before > 0.0 && sta_after > 0.0)
+          out.f_sta = raw.f_sta * (out.f_eff / raw.f_eff) * (eff_after / eff_before) * (sta_before / sta_after);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void assemble_tables(FeatherMaterial& m) {
@@ -69,7 +104,12 @@ void assemble_tables(FeatherMaterial& m) {
   // Step 1: l0 from the first bin at normal incidence.
   m.l0 = m.node(0, m.grid, m.grid).correlation;
   if (!(m.l0 > 0)) throw Error("assemble_tables: the reference correlation length (first bin, normal incidence) is not positive");
-  for (std::size_t w = 0; w < m.lambda_nm.size(); ++w) {
+  // Bins are independent: one task each (same result on any number of threads).
+  tbb::parallel_for(std::size_t{0}, m.lambda_nm.size(), [&m](std::size_t w) {
+    const int n = m.grid + 1;
+    std::vector<MaterialNode> fitted(static_cast<std::size_t>(n * n));
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) fitted[static_cast<std::size_t>(i * n + j)] = m.node(w, i, j);
     for (int i = 1; i <= m.grid; ++i)
       for (int j = 1; j <= m.grid; ++j) m.node(w, i, j).correlation /= m.l0;
     // Step 2: extrapolation (columns first, then the grazing row over all columns).
@@ -90,7 +130,8 @@ void assemble_tables(FeatherMaterial& m) {
       m.node(w, 0, j).f_eff = m.node(w, 0, j).f_sta = 0.0;
     }
     for (Field f : {&MaterialNode::m_eff, &MaterialNode::m_sta, &MaterialNode::correlation}) smooth(m, w, f);
-  }
+    renormalise_scales(m, w, fitted);
+  });
 }
 
 }  // namespace plumage

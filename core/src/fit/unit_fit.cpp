@@ -11,24 +11,10 @@ namespace plumage {
 
 namespace {
 
-// Lobe on the cone at the pattern directions (D_y = 1 there), F = 1.
-std::vector<double> cone_values(const Lobe& lobe, double theta_i, std::span<const double> phi_o) {
-  std::vector<double> v(phi_o.size());
-  for (std::size_t k = 0; k < v.size(); ++k) v[k] = lobe_value(lobe, theta_i, direction_from_angles(-theta_i, phi_o[k]));
-  return v;
-}
-
 double sum(const std::vector<double>& v) {
   double s = 0;
   for (double x : v) s += x;
   return s;
-}
-
-// The spec's 2000 midpoints in φ_o on the cone, for the F_sta ratio (spec §4.4).
-std::vector<double> midpoints(int n) {
-  std::vector<double> phi(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) phi[k] = -0.5 * kPi + (k + 0.5) * kPi / n;
-  return phi;
 }
 
 // Noise data (spec §4.6 steps 1–3): per polarization the dominant field component, its
@@ -98,6 +84,15 @@ std::vector<std::vector<double>> noise_columns(const UnitInput& in, const Lobe& 
 
 }  // namespace
 
+double cone_lobe_sum(const Lobe& lobe, double theta_i_rad, int midpoints) {
+  double s = 0;
+  for (int k = 0; k < midpoints; ++k) {
+    const double phi_o = -0.5 * kPi + (k + 0.5) * kPi / midpoints;
+    s += lobe_value(lobe, theta_i_rad, direction_from_angles(-theta_i_rad, phi_o));
+  }
+  return s;
+}
+
 UnitFit fit_unit(const UnitInput& in) {
   if (in.instances.empty()) throw Error("fit_unit: no instances");
   const std::size_t n_inst = in.instances.size(), np = in.pattern_count;
@@ -159,10 +154,9 @@ UnitFit fit_unit(const UnitInput& in) {
   out.node.phi_sta = sta.phi_c_rad;
   out.rel_l2_sta = sta.rel_l2;
   const double su = sum(u), s0 = su > 0 ? sum(s) / su : 0.0;
-  const auto mid = midpoints(2000);
   mean_lobe.scale = f_eff;
-  const double num = sum(cone_values(mean_lobe, in.theta_i_rad, mid));
-  const double den = sum(cone_values(Lobe{sta.m, sta.phi_c_rad, in.sigma, 1.0}, in.theta_i_rad, mid));
+  const double num = cone_lobe_sum(mean_lobe, in.theta_i_rad);
+  const double den = cone_lobe_sum(Lobe{sta.m, sta.phi_c_rad, in.sigma, 1.0}, in.theta_i_rad);
   const double f_sta = den > 0 ? s0 * num / den : 0.0;
   const double w = ct * std::cos(in.phi_i_rad);  // premultiplication (spec §4.3)
   out.node.f_eff = f_eff * w;
