@@ -25,7 +25,7 @@ constexpr char kJournalMagic[] = "plumage-characterize-journal 1";
 constexpr std::uint32_t kRecordMagic = 0x524d4c50;  // "PLMR"
 // Bumped whenever the simulation or fitting code changes what a record holds, so that a journal
 // or shard from older code is never mixed with new records.
-constexpr int kFitRevision = 1;
+constexpr int kFitRevision = 2;  // 2: the factored far-field kernel (records differ from 1 by rounding)
 
 template <class T>
 void put(std::string& s, T v) {

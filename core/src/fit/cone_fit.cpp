@@ -110,17 +110,46 @@ void refine(const ConeResidual& f, double& m, double& phi_c, bool phi_fixed) {
   }
 }
 
-// Best m on the coarse list at fixed φ_c.
-double coarse_m(const ConeResidual& f, double phi_c, double& best) {
-  std::vector<double> r;
-  double m_best = 0.1;
-  best = std::numeric_limits<double>::infinity();
-  for (double m : m_candidates()) {
-    const double v = objective(f, m, phi_c, r);
-    if (v < best) best = v, m_best = m;
+// The coarse search evaluates the objective at 28 m × 89 φ_c: G1(cos θ_i cos φ_o; m) does not
+// depend on φ_c and h_x = sin((φ_c + φ_o)/2) not on m, so both are tabulated once; the sums are
+// then formed exactly as ConeResidual does (same operations, same order: same numbers).
+struct CoarseTable {
+  const ConeResidual& f;
+  std::vector<double> ms;
+  std::vector<std::vector<double>> g1;  // [m][k]
+  explicit CoarseTable(const ConeResidual& residual) : f(residual), ms(m_candidates()) {
+    for (double m : ms) {
+      std::vector<double> row(f.phi_o.size());
+      for (std::size_t k = 0; k < row.size(); ++k) row[k] = smith_g1_t(f.cos_theta * std::cos(f.phi_o[k]), m);
+      g1.push_back(std::move(row));
+    }
   }
-  return m_best;
-}
+  // Best m on the coarse list at fixed φ_c.
+  double best_m(double phi_c, double& best) const {
+    const std::size_t n = f.phi_o.size();
+    std::vector<double> hx(n), g(n);
+    for (std::size_t k = 0; k < n; ++k) hx[k] = std::sin((phi_c + f.phi_o[k]) * 0.5);
+    double m_best = 0.1;
+    best = std::numeric_limits<double>::infinity();
+    for (std::size_t a = 0; a < ms.size(); ++a) {
+      const double m = ms[a];
+      double sum_g = 0.0;
+      for (std::size_t k = 0; k < n; ++k) {
+        g[k] = ggx_d_t(hx[k], m) * g1[a][k];
+        sum_g += g[k];
+      }
+      if (!(sum_g > 0.0)) continue;  // objective() = ∞
+      const double scale = f.sum_u / sum_g;
+      double v = 0.0;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double r = f.u[k] - g[k] * scale;
+        v += r * r;
+      }
+      if (v < best) best = v, m_best = m;
+    }
+    return m_best;
+  }
+};
 
 }  // namespace
 
@@ -159,11 +188,12 @@ ConeFit fit_cone_lobe(double theta_i_rad, double phi_i_rad, std::span<const doub
   const ConeResidual coarse = decimate ? ConeResidual{f.cos_theta, phi4, u4, sum4} : f;
 
   // 1. Fit of both parameters: coarse grid, then Ceres.
+  const CoarseTable table(coarse);
   double best = std::numeric_limits<double>::infinity(), m_fit = 0.1, phi_fit = 0.0;
   for (int p = -44; p <= 44; ++p) {
     const double phi = deg_to_rad(2.0 * p);
     double v;
-    const double m = coarse_m(coarse, phi, v);
+    const double m = table.best_m(phi, v);
     if (v < best) best = v, m_fit = m, phi_fit = phi;
   }
   refine(f, m_fit, phi_fit, false);
@@ -180,7 +210,7 @@ ConeFit fit_cone_lobe(double theta_i_rad, double phi_i_rad, std::span<const doub
   double m = m_fit;
   if (phi_c != phi_fit) {
     double v;
-    m = coarse_m(coarse, phi_c, v);
+    m = table.best_m(phi_c, v);
     refine(f, m, phi_c, true);
   }
   out.m = m;

@@ -29,7 +29,11 @@ double summed_autocovariance(const std::vector<std::vector<double>>& c, std::siz
   double s = 0;
   const std::size_t n = c.front().size();
   for (const auto& col : c) {
-    for (std::size_t t = 0; t < n; ++t) s += col[t] * col[(t + lag) % n];
+    // The same products in the same order as t = 0 … n − 1 with index (t + lag) mod n, without
+    // the integer division per product.
+    const double* x = col.data();
+    for (std::size_t t = 0; t < n - lag; ++t) s += x[t] * x[t + lag];
+    for (std::size_t t = n - lag; t < n; ++t) s += x[t] * x[t + lag - n];
   }
   return s;
 }

@@ -68,13 +68,15 @@ double hemisphere_lobe_integral(const Lobe& lobe, double theta_i_rad) {
     if (b > -h && b < h) theta_breaks.push_back(b);
   }
   std::sort(theta_breaks.begin(), theta_breaks.end());
+  const LobeEvaluator value(lobe, theta_i_rad);
   return integrate_panels(theta_breaks, [&](double theta_o) {
-    const double cto = std::cos(theta_o);
+    const double cto = std::cos(theta_o), sto = std::sin(theta_o);
     if (!(cto > 0)) return 0.0;
     const double phi_peak = std::asin(std::clamp(-ct * sc / cto, -1.0, 1.0));
     const auto phi_breaks = graded_breaks(phi_peak, s_phi, -h, h);
+    // ω_o = direction_from_angles(θ_o, φ_o) with cos θ_o, sin θ_o computed once per row.
     return cto * integrate_panels(phi_breaks, [&](double phi_o) {
-             return lobe_value(lobe, theta_i_rad, direction_from_angles(theta_o, phi_o));
+             return value(Direction{cto * std::sin(phi_o), sto, cto * std::cos(phi_o)});
            });
   });
 }

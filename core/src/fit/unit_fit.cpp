@@ -85,10 +85,12 @@ std::vector<std::vector<double>> noise_columns(const UnitInput& in, const Lobe& 
 }  // namespace
 
 double cone_lobe_sum(const Lobe& lobe, double theta_i_rad, int midpoints) {
+  const LobeEvaluator value(lobe, theta_i_rad);
+  const double ct = std::cos(-theta_i_rad), st = std::sin(-theta_i_rad);
   double s = 0;
   for (int k = 0; k < midpoints; ++k) {
     const double phi_o = -0.5 * kPi + (k + 0.5) * kPi / midpoints;
-    s += lobe_value(lobe, theta_i_rad, direction_from_angles(-theta_i_rad, phi_o));
+    s += value(Direction{ct * std::sin(phi_o), st, ct * std::cos(phi_o)});  // direction_from_angles(−θ_i, φ_o)
   }
   return s;
 }

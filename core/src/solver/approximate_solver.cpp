@@ -281,10 +281,19 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
   const bool lossless = normalisation_ != Normalisation::eq9;
   static const std::vector<double> kPatternBins = pattern_directions(kReferenceBins).phi_o_rad;
   const auto n = static_cast<Eigen::Index>(nodes);
-  Eigen::MatrixXcd amplitudes(n, lossless ? 24 : 12);
-  Eigen::MatrixXcd main_out, reference_out;
-  std::vector<double> chi(verts);
   const bool with_incident = currents_ == Currents::incident_and_reflected;
+  // Everything of the far field that does not depend on φ_i is set up once for all azimuths
+  // (radiation.hpp, Radiator); the currents of every azimuth are radiated together.
+  std::vector<std::span<const double>> target_phis{phi_o_rad};
+  if (lossless) target_phis.push_back(kPatternBins);
+  detail::Radiator radiator(top.vertices, top.segment_length, gamma0, theta_i_rad, target_phis, chunking_);
+  // Per-thread buffers, reused by the next solve() (no fresh pages per call).
+  thread_local std::vector<Eigen::MatrixXcd> amplitudes;
+  thread_local std::vector<std::vector<double>> chi;
+  thread_local std::vector<Eigen::MatrixXcd> radiated;
+  amplitudes.resize(n_phi);
+  chi.resize(n_phi);
+  for (std::size_t a = 0; a < n_phi; ++a) amplitudes[a].resize(n, lossless ? 24 : 12), chi[a].resize(verts);
   for (std::size_t a = 0; a < n_phi; ++a) {
     const IncidentDirection incident{theta_i_rad, phi_i_rad[a]};
     const double sp = std::sin(incident.phi_rad), cp = std::cos(incident.phi_rad);
@@ -294,20 +303,24 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
     ff.incident = incident;
     ff.phi_o_rad.assign(phi_o_rad.begin(), phi_o_rad.end());
     fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * points, points),
-                    with_incident, false, amplitudes.leftCols(12), ff.incident_power);
+                    with_incident, false, amplitudes[a].leftCols(12), ff.incident_power);
     std::array<double, 2> unused{};
     if (lossless) {
       fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * points, points),
-                      with_incident, true, amplitudes.rightCols(12), unused);
+                      with_incident, true, amplitudes[a].rightCols(12), unused);
     }
     // Incident phase k_i·ρ = −k0 ω_i·ρ at every vertex; the kernel integrates it exactly.
     for (std::size_t k = 0; k < verts; ++k) {
-      chi[k] = -k0 * ct * (sp * top.vertices[k].x + cp * top.vertices[k].z);
+      chi[a][k] = -k0 * ct * (sp * top.vertices[k].x + cp * top.vertices[k].z);
     }
-    std::vector<detail::RadiationTargets> targets{{phi_o_rad, 0, 4, &main_out}};
-    if (lossless) targets.push_back({kPatternBins, 4, 4, &reference_out});
-    detail::radiate(top.vertices, top.segment_length, chi, gamma0, theta_i_rad, amplitudes, targets,
-                    chunking_);
+  }
+  std::vector<detail::RadiationTargets> layout{{phi_o_rad, 0, 4, nullptr}};
+  if (lossless) layout.push_back({kPatternBins, 4, 4, nullptr});
+  radiator.radiate_all(std::span<const std::vector<double>>(chi.data(), n_phi),
+                       std::span<const Eigen::MatrixXcd>(amplitudes.data(), n_phi), layout, radiated);
+  for (std::size_t a = 0; a < n_phi; ++a) {
+    FarField& ff = out[a];
+    const Eigen::MatrixXcd& main_out = radiated[a * layout.size()];
     for (int p = 0; p < 2; ++p) {
       ff.field[p].resize(n_dir);
       for (std::size_t j = 0; j < n_dir; ++j) {
@@ -319,6 +332,7 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
       if (lossless) {
         // Power the lossless reference currents send into the cone (Eq. 8 with their |𝓔|²,
         // midpoint rule on the pattern bins): the normaliser.
+        const Eigen::MatrixXcd& reference_out = radiated[a * layout.size() + 1];
         double sum = 0.0;
         for (Eigen::Index j = 0; j < reference_out.rows(); ++j) {
           sum += std::norm(reference_out(j, 2 * p)) + std::norm(reference_out(j, 2 * p + 1));

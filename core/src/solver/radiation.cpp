@@ -91,23 +91,27 @@ Stencil make_stencil(std::span<const double> phi_o_rad, double lo, double step) 
   return s;
 }
 
-void radiate_chunked(std::span<const Vec2> vertices, std::span<const double> segment_length,
-                     std::span<const double> chi, double gamma0, double theta_i_rad,
-                     const Eigen::MatrixXcd& amplitudes, std::span<const RadiationTargets> targets,
-                     const ChunkingOptions& options) {
+// Chunks of the polyline: node ranges and their centres; the sampling grid over (−π/2, π/2).
+struct ChunkLayout {
+  struct Chunk {
+    std::size_t first, count;
+    Vec2 centre;
+  };
+  std::vector<Chunk> chunks;
+  std::size_t max_count = 0, samples = 0;
+  double lo = 0.0, step = 0.0;
+  std::vector<double> grid;
+};
+
+ChunkLayout chunk_layout(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
+                         const ChunkingOptions& options) {
+  ChunkLayout layout;
   const std::size_t nodes = vertices.size() - 2;
-  const int groups = static_cast<int>(amplitudes.cols() / 6);
   double total = 0.0;
   for (const double h : segment_length) total += h;
   const double mean_h = total / static_cast<double>(segment_length.size());
   const auto per_chunk = static_cast<std::size_t>(
       std::max(8.0, std::round(2.0 * options.chunk_phase / std::max(gamma0 * mean_h, 1e-12))));
-
-  // Chunks: node ranges, their centres and their band limits.
-  struct Chunk {
-    std::size_t first, count;
-    Vec2 centre;
-  };
   // Chunk sizes as equal as possible and palindromic, so that a mirrored barbule is cut into
   // the mirrored chunks.
   std::size_t count = (nodes + per_chunk - 1) / per_chunk;
@@ -116,10 +120,9 @@ void radiate_chunked(std::span<const Vec2> vertices, std::span<const double> seg
   std::size_t extra = nodes % count;
   if (extra % 2 == 1) ++sizes[count / 2], --extra;  // count is odd here
   for (std::size_t k = 0; k < extra / 2; ++k) ++sizes[k], ++sizes[count - 1 - k];
-  std::vector<Chunk> chunks;
   double band = 0.0;
   for (std::size_t k = 0, m0 = 0; k < count; m0 += sizes[k], ++k) {
-    Chunk c{m0, sizes[k], {}};
+    ChunkLayout::Chunk c{m0, sizes[k], {}};
     // Tent supports of nodes m0 … m0+count−1 span vertices m0 … m0+count+1.
     double x_lo = vertices[m0].x, x_hi = x_lo, z_lo = vertices[m0].z, z_hi = z_lo;
     for (std::size_t k = m0; k <= m0 + c.count + 1; ++k) {
@@ -133,114 +136,249 @@ void radiate_chunked(std::span<const Vec2> vertices, std::span<const double> seg
     // projection on ê1, ê2 adds two more orders.
     const double x = gamma0 * radius;
     band = std::max(band, x + 7.0 * std::cbrt(x) + 10.0);
-    chunks.push_back(c);
+    layout.chunks.push_back(c);
+    layout.max_count = std::max(layout.max_count, c.count);
   }
   // A whole number of steps across (−π/2, π/2), so that the grid is symmetric about 0 and a
   // mirrored barbule sees the mirrored grid.
   const double intervals = std::ceil(options.oversampling * band);
-  const double step = kPi / intervals;
-  const double lo = -0.5 * kPi - 3.0 * step;
-  const auto samples = static_cast<std::size_t>(intervals) + 7;
-  std::vector<double> grid(samples);
-  for (std::size_t p = 0; p < samples; ++p) {
-    grid[p] = step * (static_cast<double>(p) - 3.0 - 0.5 * intervals);
+  layout.step = kPi / intervals;
+  layout.lo = -0.5 * kPi - 3.0 * layout.step;
+  layout.samples = static_cast<std::size_t>(intervals) + 7;
+  layout.grid.resize(layout.samples);
+  for (std::size_t p = 0; p < layout.samples; ++p) {
+    layout.grid[p] = layout.step * (static_cast<double>(p) - 3.0 - 0.5 * intervals);
   }
+  return layout;
+}
 
-  std::vector<Stencil> stencils;
-  std::vector<std::vector<Complex>> accumulated;  // per target set, row-major (direction, output)
-  for (const RadiationTargets& t : targets) {
-    stencils.push_back(make_stencil(t.phi_o_rad, lo, step));
-    accumulated.emplace_back(t.phi_o_rad.size() * static_cast<std::size_t>(t.outputs), Complex(0.0, 0.0));
+}  // namespace
+
+struct Radiator::Plan {
+  std::span<const Vec2> vertices;
+  std::span<const double> segment_length;
+  double gamma0 = 0.0, theta_i_rad = 0.0;
+  std::vector<std::span<const double>> target_phi;
+  bool chunked = false;
+  ChunkLayout layout;
+  std::vector<Stencil> stencils;                      // per target set
+  std::vector<OutgoingPhases> outgoing;               // per chunk, on the sampling grid
+  std::vector<std::array<double, 3>> e1, e2;          // polarization directions at the grid points
+  // e^{−iγ0 ρ̂_j·r_c} per chunk and target set, directions padded to a multiple of 4.
+  std::vector<std::vector<std::vector<double>>> phase_re, phase_im;
+  FactoredTentKernel kernel;
+  Eigen::MatrixXd kernel_split, product;               // [Re K; Im K] (2P × nodes), its product
+  std::vector<Eigen::MatrixXd> amplitude_split;        // per azimuth: [Re A | Im A]
+  std::vector<std::vector<double>> rows;               // per target set: [grid point][azimuth][output] (re, im)
+  std::vector<std::vector<double>> accumulated;        // per target set: [direction][azimuth][output] (re, im)
+  std::vector<double> acc;
+};
+
+namespace {
+// One spare plan per thread: its buffers (a few MB for a production barbule) are reused by the
+// next solve() instead of being mapped and faulted in again.
+thread_local std::unique_ptr<Radiator::Plan> spare_plan;
+}  // namespace
+
+Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
+                   double theta_i_rad, std::vector<std::span<const double>> target_phi_o_rad,
+                   const ChunkingOptions& options)
+    : plan_(spare_plan ? std::move(spare_plan) : std::make_unique<Plan>()) {
+  if (vertices.size() < 3) throw Error("radiate: a polyline needs at least 3 vertices");
+  Plan& p = *plan_;
+  p.vertices = vertices;
+  p.segment_length = segment_length;
+  p.gamma0 = gamma0;
+  p.theta_i_rad = theta_i_rad;
+  p.target_phi = std::move(target_phi_o_rad);
+  bool on_cone = true;
+  for (const auto& phis : p.target_phi) {
+    for (const double phi : phis) on_cone = on_cone && std::abs(phi) <= 0.5 * kPi;
   }
-
-  TentKernel kernel(*std::max_element(sizes.begin(), sizes.end()) + 2);
-  Eigen::MatrixXcd kt, sums, projected;
-  // The projected samples of one chunk, row-major: all outputs of a grid point side by side, so
-  // that one stencil serves every output.
-  std::vector<double> rows;
-  const int outputs = 2 * groups;
-  std::vector<double> angle, phase_re, phase_im;
-  for (const Chunk& c : chunks) {
-    const std::size_t v0 = c.first, nv = c.count + 2;
-    kernel.build(vertices.subspan(v0, nv), segment_length.subspan(v0, nv - 1), chi.subspan(v0, nv),
-                 c.centre, gamma0, grid, kt);
-    sums.noalias() = kt.transpose() * amplitudes.middleRows(static_cast<Eigen::Index>(c.first),
-                                                            static_cast<Eigen::Index>(c.count));
-    project_rows(sums, grid, theta_i_rad, groups, projected);
-    rows.resize(samples * 2 * static_cast<std::size_t>(outputs));
-    for (std::size_t p = 0; p < samples; ++p) {
-      for (int q = 0; q < outputs; ++q) {
-        const Complex y = projected(static_cast<Eigen::Index>(p), q);
-        rows[2 * (p * outputs + q)] = y.real();
-        rows[2 * (p * outputs + q) + 1] = y.imag();
-      }
-    }
-    for (std::size_t s = 0; s < targets.size(); ++s) {
-      const RadiationTargets& t = targets[s];
-      const Stencil& st = stencils[s];
-      const std::size_t n_dir = t.phi_o_rad.size();
-      // e^{−iγ0 ρ̂_j·r_c}, four directions at a time.
+  p.chunked = options.chunked && on_cone;
+  if (!p.chunked) return;
+  p.layout = chunk_layout(vertices, segment_length, gamma0, options);
+  const std::size_t sets = p.target_phi.size(), chunks = p.layout.chunks.size();
+  p.stencils.resize(sets);
+  for (std::size_t s = 0; s < sets; ++s) p.stencils[s] = make_stencil(p.target_phi[s], p.layout.lo, p.layout.step);
+  const double st = std::sin(theta_i_rad), ct = std::cos(theta_i_rad);
+  p.e1.clear(), p.e2.clear();
+  for (const double phi : p.layout.grid) {
+    const double sp = std::sin(phi), cp = std::cos(phi);
+    p.e1.push_back({cp, 0.0, -sp});
+    p.e2.push_back({st * sp, ct, st * cp});
+  }
+  p.outgoing.resize(chunks);
+  p.phase_re.resize(chunks);
+  p.phase_im.resize(chunks);
+  std::vector<double> angle;
+  for (std::size_t ci = 0; ci < chunks; ++ci) {
+    const auto& c = p.layout.chunks[ci];
+    p.outgoing[ci].build(vertices.subspan(c.first, c.count + 2), c.centre, gamma0, p.layout.grid);
+    p.phase_re[ci].resize(sets);
+    p.phase_im[ci].resize(sets);
+    for (std::size_t s = 0; s < sets; ++s) {
+      const Stencil& st = p.stencils[s];
+      const std::size_t n_dir = p.target_phi[s].size();
+      std::vector<double>& pr = p.phase_re[ci][s];
+      std::vector<double>& pi = p.phase_im[ci][s];
       angle.assign(n_dir + 4, 0.0);
-      phase_re.resize(n_dir + 4), phase_im.resize(n_dir + 4);
+      pr.resize(n_dir + 4);
+      pi.resize(n_dir + 4);
       for (std::size_t j = 0; j < n_dir; ++j) {
         angle[j] = -gamma0 * (st.sin_phi[j] * c.centre.x + st.cos_phi[j] * c.centre.z);
       }
       for (std::size_t j = 0; j < n_dir; j += 4) {
         simd::v4d sn, cs;
         simd::sincos(simd::v4d{angle[j], angle[j + 1], angle[j + 2], angle[j + 3]}, sn, cs);
-        for (int l = 0; l < 4; ++l) phase_re[j + l] = cs[l], phase_im[j + l] = sn[l];
-      }
-      const int width = 2 * t.outputs;  // doubles per direction
-      double acc[2 * 16];
-      for (std::size_t j = 0; j < n_dir; ++j) {
-        const double* y = rows.data() + 2 * (static_cast<std::size_t>(st.first[j]) * outputs + t.first_output);
-        const auto& w = st.weight[j];
-        for (int k = 0; k < width; ++k) acc[k] = 0.0;
-        for (int a = 0; a < 6; ++a) {
-          const double* ya = y + 2 * a * outputs;
-          for (int k = 0; k < width; ++k) acc[k] += w[a] * ya[k];
-        }
-        Complex* out = accumulated[s].data() + j * static_cast<std::size_t>(t.outputs);
-        for (int q = 0; q < t.outputs; ++q) {
-          const double re = acc[2 * q], im = acc[2 * q + 1];
-          out[q] += Complex(phase_re[j] * re - phase_im[j] * im, phase_re[j] * im + phase_im[j] * re);
-        }
-      }
-    }
-  }
-  for (std::size_t s = 0; s < targets.size(); ++s) {
-    const RadiationTargets& t = targets[s];
-    t.result->resize(static_cast<Eigen::Index>(t.phi_o_rad.size()), t.outputs);
-    for (std::size_t j = 0; j < t.phi_o_rad.size(); ++j) {
-      for (int q = 0; q < t.outputs; ++q) {
-        (*t.result)(static_cast<Eigen::Index>(j), q) = accumulated[s][j * static_cast<std::size_t>(t.outputs) + q];
+        for (int l = 0; l < 4; ++l) pr[j + l] = cs[l], pi[j + l] = sn[l];
       }
     }
   }
 }
 
-}  // namespace
+Radiator::~Radiator() {
+  if (plan_) spare_plan = std::move(plan_);
+}
+
+void Radiator::radiate(std::span<const double> chi, const Eigen::MatrixXcd& amplitudes,
+                       std::span<const RadiationTargets> targets) {
+  const std::vector<double> chis[1] = {std::vector<double>(chi.begin(), chi.end())};
+  std::vector<Eigen::MatrixXcd> results;
+  radiate_all(chis, std::span<const Eigen::MatrixXcd>(&amplitudes, 1), targets, results);
+  for (std::size_t s = 0; s < targets.size(); ++s) *targets[s].result = std::move(results[s]);
+}
+
+void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<const Eigen::MatrixXcd> amplitudes,
+                           std::span<const RadiationTargets> layout, std::vector<Eigen::MatrixXcd>& results) {
+  Plan& p = *plan_;
+  const std::size_t n_phi = chi.size(), sets = layout.size();
+  if (amplitudes.size() != n_phi || sets != p.target_phi.size()) throw Error("radiate: targets differ from the plan's");
+  for (std::size_t s = 0; s < sets; ++s) {
+    const RadiationTargets& t = layout[s];
+    if (t.phi_o_rad.data() != p.target_phi[s].data() || t.phi_o_rad.size() != p.target_phi[s].size())
+      throw Error("radiate: targets differ from the plan's");
+    for (const Eigen::MatrixXcd& a : amplitudes) {
+      if (t.outputs < 1 || t.outputs > 16 || t.first_output < 0 || t.first_output + t.outputs > 2 * a.cols() / 6) {
+        throw Error("radiate: target outputs out of range");
+      }
+    }
+  }
+  results.resize(n_phi * sets);
+  if (!p.chunked) {
+    for (std::size_t a = 0; a < n_phi; ++a) {
+      std::vector<RadiationTargets> targets(layout.begin(), layout.end());
+      for (std::size_t s = 0; s < sets; ++s) targets[s].result = &results[a * sets + s];
+      radiate_exact(p.vertices, p.segment_length, chi[a], p.gamma0, p.theta_i_rad, amplitudes[a], targets);
+    }
+    return;
+  }
+  const auto columns = amplitudes.front().cols();
+  const int groups = static_cast<int>(columns / 6);
+  const std::size_t samples = p.layout.samples;
+  p.amplitude_split.resize(n_phi);
+  for (std::size_t a = 0; a < n_phi; ++a) {
+    if (amplitudes[a].cols() != columns) throw Error("radiate: azimuths differ in current columns");
+    p.amplitude_split[a].resize(amplitudes[a].rows(), 2 * columns);
+    p.amplitude_split[a].leftCols(columns) = amplitudes[a].real();
+    p.amplitude_split[a].rightCols(columns) = amplitudes[a].imag();
+  }
+  p.rows.resize(sets);
+  p.accumulated.resize(sets);
+  for (std::size_t s = 0; s < sets; ++s) {
+    p.rows[s].assign(samples * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs), 0.0);
+    p.accumulated[s].assign(layout[s].phi_o_rad.size() * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs), 0.0);
+  }
+  const auto P = static_cast<Eigen::Index>(samples);
+  for (std::size_t ci = 0; ci < p.layout.chunks.size(); ++ci) {
+    const auto& c = p.layout.chunks[ci];
+    const std::size_t v0 = c.first, nv = c.count + 2;
+    for (std::size_t a = 0; a < n_phi; ++a) {
+      // Real arithmetic: [Re K; Im K]·[Re A | Im A] holds the four real products of K·A.
+      p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
+                     std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split);
+      p.product.noalias() = p.kernel_split * p.amplitude_split[a].middleRows(static_cast<Eigen::Index>(c.first),
+                                                                           static_cast<Eigen::Index>(c.count));
+      // Project the six sums of each group on ê1, ê2 (radiation.hpp) at every grid point, into
+      // the rows of each target set that wants those outputs.
+      for (Eigen::Index j = 0; j < P; ++j) {
+        const auto& e1 = p.e1[static_cast<std::size_t>(j)];
+        const auto& e2 = p.e2[static_cast<std::size_t>(j)];
+        auto sum = [&](Eigen::Index col) {
+          return Complex(p.product(j, col) - p.product(P + j, columns + col),
+                         p.product(j, columns + col) + p.product(P + j, col));
+        };
+        for (int g = 0; g < groups; ++g) {
+          const Eigen::Index b = 6 * g;
+          const Complex s0 = sum(b), s1 = sum(b + 1), s2 = sum(b + 2), s3 = sum(b + 3), s4 = sum(b + 4), s5 = sum(b + 5);
+          const Complex e1j = e1[0] * s0 + e1[2] * s2;
+          const Complex e2j = e2[0] * s0 + e2[1] * s1 + e2[2] * s2;
+          const Complex e1m = e1[0] * s3 + e1[2] * s5;
+          const Complex e2m = e2[0] * s3 + e2[1] * s4 + e2[2] * s5;
+          const Complex o[2] = {-e1j - e2m, -e2j + e1m};
+          for (int h = 0; h < 2; ++h) {
+            const int q = 2 * g + h;
+            for (std::size_t s = 0; s < sets; ++s) {
+              const int k = q - layout[s].first_output;
+              if (k < 0 || k >= layout[s].outputs) continue;
+              const std::size_t at = 2 * ((static_cast<std::size_t>(j) * n_phi + a) * static_cast<std::size_t>(layout[s].outputs) + static_cast<std::size_t>(k));
+              p.rows[s][at] = o[h].real();
+              p.rows[s][at + 1] = o[h].imag();
+            }
+          }
+        }
+      }
+    }
+    // Interpolate every azimuth's samples to the targets and add them with the chunk's phase.
+    for (std::size_t s = 0; s < sets; ++s) {
+      const Stencil& st = p.stencils[s];
+      const std::size_t n_dir = layout[s].phi_o_rad.size();
+      const double* phase_re = p.phase_re[ci][s].data();
+      const double* phase_im = p.phase_im[ci][s].data();
+      const std::size_t width = n_phi * 2 * static_cast<std::size_t>(layout[s].outputs);  // doubles per grid point
+      p.acc.resize(width);
+      double* acc = p.acc.data();
+      for (std::size_t j = 0; j < n_dir; ++j) {
+        const double* y = p.rows[s].data() + static_cast<std::size_t>(st.first[j]) * width;
+        const auto& w = st.weight[j];
+        for (std::size_t k = 0; k < width; ++k) acc[k] = 0.0;
+        for (int a = 0; a < 6; ++a) {
+          const double* ya = y + static_cast<std::size_t>(a) * width;
+          const double wa = w[a];
+          for (std::size_t k = 0; k < width; ++k) acc[k] += wa * ya[k];
+        }
+        double* out = p.accumulated[s].data() + j * width;
+        const double pr = phase_re[j], pi = phase_im[j];
+        for (std::size_t k = 0; k < width; k += 2) {
+          const double re = acc[k], im = acc[k + 1];
+          out[k] += pr * re - pi * im;
+          out[k + 1] += pr * im + pi * re;
+        }
+      }
+    }
+  }
+  for (std::size_t a = 0; a < n_phi; ++a) {
+    for (std::size_t s = 0; s < sets; ++s) {
+      const std::size_t n_dir = layout[s].phi_o_rad.size(), outputs = static_cast<std::size_t>(layout[s].outputs);
+      Eigen::MatrixXcd& r = results[a * sets + s];
+      r.resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(outputs));
+      for (std::size_t j = 0; j < n_dir; ++j) {
+        const double* v = p.accumulated[s].data() + 2 * ((j * n_phi + a) * outputs);
+        for (std::size_t q = 0; q < outputs; ++q) {
+          r(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(q)) = Complex(v[2 * q], v[2 * q + 1]);
+        }
+      }
+    }
+  }
+}
 
 void radiate(std::span<const Vec2> vertices, std::span<const double> segment_length,
              std::span<const double> chi, double gamma0, double theta_i_rad,
              const Eigen::MatrixXcd& amplitudes, std::span<const RadiationTargets> targets,
              const ChunkingOptions& options) {
-  for (const RadiationTargets& t : targets) {
-    if (t.outputs < 1 || t.outputs > 16 || t.first_output < 0 ||
-        t.first_output + t.outputs > 2 * amplitudes.cols() / 6) {
-      throw Error("radiate: target outputs out of range");
-    }
-  }
-  if (vertices.size() < 3) throw Error("radiate: a polyline needs at least 3 vertices");
-  bool on_cone = true;
-  for (const RadiationTargets& t : targets) {
-    for (const double phi : t.phi_o_rad) on_cone = on_cone && std::abs(phi) <= 0.5 * kPi;
-  }
-  if (options.chunked && on_cone) {
-    radiate_chunked(vertices, segment_length, chi, gamma0, theta_i_rad, amplitudes, targets, options);
-  } else {
-    radiate_exact(vertices, segment_length, chi, gamma0, theta_i_rad, amplitudes, targets);
-  }
+  std::vector<std::span<const double>> phis;
+  for (const RadiationTargets& t : targets) phis.push_back(t.phi_o_rad);
+  Radiator(vertices, segment_length, gamma0, theta_i_rad, std::move(phis), options).radiate(chi, amplitudes, targets);
 }
 
 }  // namespace plumage::detail

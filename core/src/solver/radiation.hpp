@@ -23,6 +23,7 @@
 
 #include <Eigen/Dense>
 
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -46,5 +47,35 @@ void radiate(std::span<const Vec2> vertices, std::span<const double> segment_len
              std::span<const double> chi, double gamma0, double theta_i_rad,
              const Eigen::MatrixXcd& amplitudes, std::span<const RadiationTargets> targets,
              const ChunkingOptions& options);
+
+// radiate() for many incident azimuths of one (polyline, γ0, θ_i, target azimuths): what does
+// not depend on the incident phase χ — the chunks, the sampling grid, the interpolation stencils,
+// the chunk phases e^{−iγ0 ρ̂_j·r_c} at the targets and the outgoing kernel phases
+// (OutgoingPhases) — is set up once; radiate() then costs one complex product per kernel entry
+// instead of a sincos. Same results as the free function to rounding.
+class Radiator {
+ public:
+  Radiator(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
+           double theta_i_rad, std::vector<std::span<const double>> target_phi_o_rad,
+           const ChunkingOptions& options);
+  ~Radiator();
+  Radiator(const Radiator&) = delete;
+  Radiator& operator=(const Radiator&) = delete;
+
+  // targets[s].phi_o_rad must be the azimuths given to the constructor as set s.
+  void radiate(std::span<const double> chi, const Eigen::MatrixXcd& amplitudes,
+               std::span<const RadiationTargets> targets);
+  // Every incident azimuth a at once: chi[a], amplitudes[a]; `layout` as `targets` above (its
+  // `result` pointers unused); results[a · layout.size() + s] receives set s of azimuth a. The
+  // chunks' interpolation to the targets runs over all azimuths together (one stencil and chunk
+  // phase per direction for all of them).
+  void radiate_all(std::span<const std::vector<double>> chi, std::span<const Eigen::MatrixXcd> amplitudes,
+                   std::span<const RadiationTargets> layout, std::vector<Eigen::MatrixXcd>& results);
+
+  struct Plan;  // radiation.cpp
+
+ private:
+  std::unique_ptr<Plan> plan_;
+};
 
 }  // namespace plumage::detail

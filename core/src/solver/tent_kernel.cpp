@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "plumage/simd_math.hpp"
 #include "tent_integrals.hpp"
@@ -11,6 +12,167 @@ namespace plumage::detail {
 TentKernel::TentKernel(std::size_t max_vertices) {
   const std::size_t v = max_vertices + 8;
   for (auto* b : {&psi_, &er_, &ei_, &ar_, &ai_, &br_, &bi_, &u_, &h_}) b->assign(v, 0.0);
+}
+
+void OutgoingPhases::build(std::span<const Vec2> vertices, Vec2 origin, double gamma0,
+                           std::span<const double> phi_o_rad) {
+  verts = vertices.size();
+  directions = phi_o_rad.size();
+  stride = (directions + 7) / 8 * 8;
+  re.assign(stride * verts, 0.0);
+  im.assign(stride * verts, 0.0);
+  dg.assign(stride * verts, 0.0);
+  std::vector<double> sx(stride, 0.0), sz(stride, 0.0), g(stride, 0.0), g_next(stride, 0.0);
+  for (std::size_t j = 0; j < directions; ++j) sx[j] = gamma0 * std::sin(phi_o_rad[j]), sz[j] = gamma0 * std::cos(phi_o_rad[j]);
+  for (std::size_t k = 0; k < verts; ++k) {
+    const double dx = vertices[k].x - origin.x, dz = vertices[k].z - origin.z;
+    for (std::size_t j = 0; j < directions; ++j) g_next[j] = -(sx[j] * dx + sz[j] * dz);
+    double* r = re.data() + k * stride;
+    double* i = im.data() + k * stride;
+    for (std::size_t j = 0; j < stride; j += 4) {
+      simd::v4d sn, cs;
+      simd::sincos(simd::v4d{g_next[j], g_next[j + 1], g_next[j + 2], g_next[j + 3]}, sn, cs);
+      for (int l = 0; l < 4; ++l) r[j + l] = cs[l], i[j + l] = sn[l];
+    }
+    if (k > 0) {
+      double* d = dg.data() + (k - 1) * stride;
+      for (std::size_t j = 0; j < directions; ++j) d[j] = g_next[j] - g[j];
+    }
+    std::swap(g, g_next);
+  }
+}
+
+namespace {
+
+// The vector loops of FactoredTentKernel::build, as functions with restrict parameters (GCC 12
+// does not vectorise them with restrict-qualified locals inside the segment loop).
+// e = h·e^{iχ}·e^{ig}
+void phase_product(double h, double c, double s, const double* __restrict gr, const double* __restrict gi,
+                   double* __restrict er, double* __restrict ei, std::size_t n) {
+  for (std::size_t j = 0; j < n; ++j) {
+    er[j] = h * (c * gr[j] - s * gi[j]);
+    ei[j] = h * (c * gi[j] + s * gr[j]);
+  }
+}
+
+// out = add + e·w (complex, split)
+void multiply_add(const double* __restrict add_re, const double* __restrict add_im, const double* __restrict er,
+                  const double* __restrict ei, const double* __restrict wr, const double* __restrict wi,
+                  double* __restrict out_re, double* __restrict out_im, std::size_t n) {
+  for (std::size_t j = 0; j < n; ++j) {
+    out_re[j] = add_re[j] + (er[j] * wr[j] - ei[j] * wi[j]);
+    out_im[j] = add_im[j] + (er[j] * wi[j] + ei[j] * wr[j]);
+  }
+}
+
+// out = e·w (complex, split)
+void multiply(const double* __restrict er, const double* __restrict ei, const double* __restrict wr,
+              const double* __restrict wi, double* __restrict out_re, double* __restrict out_im, std::size_t n) {
+  for (std::size_t j = 0; j < n; ++j) {
+    out_re[j] = er[j] * wr[j] - ei[j] * wi[j];
+    out_im[j] = er[j] * wi[j] + ei[j] * wr[j];
+  }
+}
+
+}  // namespace
+
+void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+                               std::span<const double> chi, Eigen::MatrixXd& split) {
+  const std::size_t verts = outgoing.verts, segs = verts - 1, nodes = verts - 2;
+  const std::size_t n = outgoing.stride, p_dir = outgoing.directions;
+  for (auto* b : {&ar_, &ai_, &br_, &bi_, &er_, &ei_, &carry_re_, &carry_im_, &node_re_, &node_im_}) b->resize(n);
+  split.resize(static_cast<Eigen::Index>(2 * p_dir), static_cast<Eigen::Index>(nodes));
+  // e^{iχ_k} at every vertex.
+  in_re_.resize(verts + 4), in_im_.resize(verts + 4), padded_.resize(verts + 4);
+  for (std::size_t k = 0; k < verts + 4; ++k) padded_[k] = chi[std::min(k, verts - 1)];
+  for (std::size_t k = 0; k < verts; k += 4) {
+    simd::v4d sn, cs;
+    simd::sincos(simd::v4d{padded_[k], padded_[k + 1], padded_[k + 2], padded_[k + 3]}, sn, cs);
+    std::memcpy(in_re_.data() + k, &cs, sizeof cs);
+    std::memcpy(in_im_.data() + k, &sn, sizeof sn);
+  }
+  double* ar = ar_.data();
+  double* ai = ai_.data();
+  double* br = br_.data();
+  double* bi = bi_.data();
+  double* er = er_.data();
+  double* ei = ei_.data();
+  double* cr = carry_re_.data();
+  double* ci = carry_im_.data();
+  double* nr = node_re_.data();
+  double* ni = node_im_.data();
+  // Segment k (vertices k, k + 1, length h) adds h·e^{iψ_k}·A(u_k) to node k and h·e^{iψ_k}·B(u_k)
+  // to node k + 1 (node m is vertex m, column m − 1). Padding lanes (j ≥ P) compute harmless values.
+  for (std::size_t k = 0; k < segs; ++k) {
+    const double dchi = chi[k + 1] - chi[k];
+    const double* gr = outgoing.re.data() + k * n;
+    const double* gi = outgoing.im.data() + k * n;
+    const double* dg = outgoing.dg.data() + k * n;
+    simd::v4d largest = simd::splat(0.0);
+    for (std::size_t j = 0; j < n; j += 4) {
+      simd::v4d u;
+      std::memcpy(&u, dg + j, sizeof u);
+      u += dchi;
+      const simd::v4d magnitude = u < 0.0 ? -u : u;
+      largest = magnitude > largest ? magnitude : largest;
+      simd::v4d a_re, a_im, b_re, b_im;
+      tent_weights_series(u, a_re, a_im, b_re, b_im);
+      std::memcpy(ar + j, &a_re, sizeof a_re);
+      std::memcpy(ai + j, &a_im, sizeof a_im);
+      std::memcpy(br + j, &b_re, sizeof b_re);
+      std::memcpy(bi + j, &b_im, sizeof b_im);
+    }
+    if (std::max(std::max(largest[0], largest[1]), std::max(largest[2], largest[3])) > kTaylorRange) {
+      // Coarse sampling or very short λ: closed form where the series would not converge.
+      for (std::size_t j = 0; j < p_dir; ++j) {
+        const double u = dchi + dg[j];
+        if (std::abs(u) <= kTaylorRange) continue;
+        std::complex<double> a, b;
+        tent_weights_closed(u, a, b);
+        ar[j] = a.real(), ai[j] = a.imag(), br[j] = b.real(), bi[j] = b.imag();
+      }
+    }
+    phase_product(segment_length[k], in_re_[k], in_im_[k], gr, gi, er, ei, n);
+    if (k >= 1) {
+      // Node k's column: the B part of segment k − 1 (carry) plus the A part of segment k.
+      multiply_add(cr, ci, er, ei, ar, ai, nr, ni, n);
+      double* col = split.data() + static_cast<Eigen::Index>((k - 1) * 2 * p_dir);
+      std::memcpy(col, nr, p_dir * sizeof(double));
+      std::memcpy(col + p_dir, ni, p_dir * sizeof(double));
+    }
+    multiply(er, ei, br, bi, cr, ci, n);
+  }
+}
+
+void TentKernel::accumulate(std::size_t segs, double* out) {
+  const std::size_t nodes = segs - 1;
+  double largest = 0.0;
+  for (std::size_t k = 0; k < segs; k += 4) {
+    simd::v4d a_re, a_im, b_re, b_im;
+    const simd::v4d u{u_[k], u_[k + 1], u_[k + 2], u_[k + 3]};
+    tent_weights_series(u, a_re, a_im, b_re, b_im);
+    for (int l = 0; l < 4; ++l) {
+      ar_[k + l] = a_re[l], ai_[k + l] = a_im[l], br_[k + l] = b_re[l], bi_[k + l] = b_im[l];
+      if (k + l < segs) largest = std::max(largest, std::abs(u[l]));
+    }
+  }
+  if (largest > kTaylorRange) {  // coarse sampling or very short λ: closed form
+    for (std::size_t k = 0; k < segs; ++k) {
+      if (std::abs(u_[k]) <= kTaylorRange) continue;
+      std::complex<double> a, b;
+      tent_weights_closed(u_[k], a, b);
+      ar_[k] = a.real(), ai_[k] = a.imag(), br_[k] = b.real(), bi_[k] = b.imag();
+    }
+  }
+  // Node m (vertex m) collects h·e^{iψ}·B of segment m−1 and h·e^{iψ}·A of segment m.
+  for (std::size_t m = 1; m <= nodes; ++m) {
+    const double pr = er_[m - 1] * br_[m - 1] - ei_[m - 1] * bi_[m - 1];
+    const double pi = er_[m - 1] * bi_[m - 1] + ei_[m - 1] * br_[m - 1];
+    const double nr = er_[m] * ar_[m] - ei_[m] * ai_[m];
+    const double ni = er_[m] * ai_[m] + ei_[m] * ar_[m];
+    out[2 * (m - 1)] = h_[m - 1] * pr + h_[m] * nr;
+    out[2 * (m - 1) + 1] = h_[m - 1] * pi + h_[m] * ni;
+  }
 }
 
 // Written as plain loops over structure-of-arrays buffers so that they vectorise; complex
@@ -41,36 +203,9 @@ void TentKernel::build(std::span<const Vec2> vertices, std::span<const double> s
       simd::sincos(simd::v4d{psi[k], psi[k + 1], psi[k + 2], psi[k + 3]}, s, c);
       for (int l = 0; l < 4; ++l) er_[k + l] = c[l], ei_[k + l] = s[l];
     }
-    // Segment phase increments u and the tent weights A(u), B(u).
+    // Segment phase increments u and the tent weights A(u), B(u), then the node sums.
     for (std::size_t k = 0; k < segs + 4; ++k) u_[k] = psi[k + 1] - psi[k];
-    double largest = 0.0;
-    for (std::size_t k = 0; k < segs; k += 4) {
-      simd::v4d a_re, a_im, b_re, b_im;
-      const simd::v4d u{u_[k], u_[k + 1], u_[k + 2], u_[k + 3]};
-      tent_weights_series(u, a_re, a_im, b_re, b_im);
-      for (int l = 0; l < 4; ++l) {
-        ar_[k + l] = a_re[l], ai_[k + l] = a_im[l], br_[k + l] = b_re[l], bi_[k + l] = b_im[l];
-        if (k + l < segs) largest = std::max(largest, std::abs(u[l]));
-      }
-    }
-    if (largest > kTaylorRange) {  // coarse sampling or very short λ: closed form
-      for (std::size_t k = 0; k < segs; ++k) {
-        if (std::abs(u_[k]) <= kTaylorRange) continue;
-        std::complex<double> a, b;
-        tent_weights_closed(u_[k], a, b);
-        ar_[k] = a.real(), ai_[k] = a.imag(), br_[k] = b.real(), bi_[k] = b.imag();
-      }
-    }
-    // Node m (vertex m) collects h·e^{iψ}·B of segment m−1 and h·e^{iψ}·A of segment m.
-    double* out = reinterpret_cast<double*>(kt.data() + static_cast<Eigen::Index>(j * nodes));
-    for (std::size_t m = 1; m <= nodes; ++m) {
-      const double pr = er_[m - 1] * br_[m - 1] - ei_[m - 1] * bi_[m - 1];
-      const double pi = er_[m - 1] * bi_[m - 1] + ei_[m - 1] * br_[m - 1];
-      const double nr = er_[m] * ar_[m] - ei_[m] * ai_[m];
-      const double ni = er_[m] * ai_[m] + ei_[m] * ar_[m];
-      out[2 * (m - 1)] = h_[m - 1] * pr + h_[m] * nr;
-      out[2 * (m - 1) + 1] = h_[m - 1] * pi + h_[m] * ni;
-    }
+    accumulate(segs, reinterpret_cast<double*>(kt.data() + static_cast<Eigen::Index>(j * nodes)));
   }
 }
 

@@ -14,6 +14,32 @@
 
 namespace plumage::detail {
 
+// The outgoing half of the kernel's phase for one polyline, phase origin and set of azimuths:
+// g_k(φ) = −γ0 ρ̂(φ)·(ρ_k − o), stored as e^{i g_k} and the segment increments g_{k+1} − g_k.
+// It does not depend on the incident azimuth, so one table serves every φ_i of a (λ, θ_i):
+// ψ_k = χ_k + g_k, e^{iψ_k} = e^{iχ_k} e^{ig_k}, u_k = (χ_{k+1} − χ_k) + (g_{k+1} − g_k).
+// Vertex-major (the directions of a vertex contiguous), so that the kernel is built with long
+// vector loops over the directions.
+struct OutgoingPhases {
+  std::size_t verts = 0, stride = 0, directions = 0;
+  std::vector<double> re, im, dg;  // [vertex · stride + direction] (dg: segment), zero-padded
+
+  void build(std::span<const Vec2> vertices, Vec2 origin, double gamma0, std::span<const double> phi_o_rad);
+};
+
+// The transposed kernel from an OutgoingPhases table and the incident phase χ (over the table's
+// vertex range), split into real and imaginary parts for real GEMMs: `split` is (2·directions) ×
+// nodes, rows 0 … P − 1 Re K[m, φ_j], rows P … 2P − 1 Im K[m, φ_j]. One complex product per
+// entry instead of a sincos. Equal to TentKernel::build's kt (transposed) to rounding.
+class FactoredTentKernel {
+ public:
+  void build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+             std::span<const double> chi, Eigen::MatrixXd& split);
+
+ private:
+  std::vector<double> ar_, ai_, br_, bi_, er_, ei_, carry_re_, carry_im_, node_re_, node_im_, in_re_, in_im_, padded_;
+};
+
 class TentKernel {
  public:
   // The scratch buffers fit polylines of up to `max_vertices` vertices.
@@ -27,6 +53,9 @@ class TentKernel {
              std::span<const double> phi_o_rad, Eigen::MatrixXcd& kt);
 
  private:
+  // Node sums from er_/ei_ (e^{iψ}) and u_ (segment phase increments) into column j of kt.
+  void accumulate(std::size_t segs, double* out);
+
   std::vector<double> psi_, er_, ei_, ar_, ai_, br_, bi_, u_, h_;
 };
 
