@@ -201,6 +201,32 @@ TEST_CASE("chunked far field agrees with the exact sum on every layered species"
   }
 }
 
+// The solver radiates all incident azimuths of a (λ, θ_i) together from one plan, reusing
+// per-thread buffers between calls (core/src/solver/radiation.hpp, Radiator): the batch must give
+// what one azimuth at a time gives, also after a call on a barbule of another size.
+TEST_CASE("all incident azimuths at once equal one azimuth at a time", "[solver][species]") {
+  const auto species = layered_species();
+  auto dirs = pattern_directions(400).phi_o_rad;
+  const auto projected = projected_directions(deg_to_rad(30.0), 1024).phi_o_rad;
+  dirs.insert(dirs.end(), projected.begin(), projected.end());
+  const double phi[3] = {deg_to_rad(10.0), deg_to_rad(-70.0), deg_to_rad(35.0)};
+  for (std::size_t k = 0; k < species.size(); ++k) {
+    const auto& s = species[k];
+    const auto& other = species[(k + 1) % species.size()];
+    auto prepared = s.solver->prepare(s.structure->generate(2), s.reflection);
+    auto prepared_other = other.solver->prepare(other.structure->generate(5), other.reflection);
+    const auto all = s.solver->solve(*prepared, 520.0, deg_to_rad(30.0), phi, dirs);
+    REQUIRE(all.size() == 3);
+    for (int a = 0; a < 3; ++a) {
+      other.solver->solve(*prepared_other, 610.0, deg_to_rad(60.0), std::span<const double>(phi, 2), dirs);
+      const auto one = s.solver->solve(*prepared, 520.0, deg_to_rad(30.0), std::span<const double>(phi + a, 1), dirs);
+      INFO(s.species << " phi_i " << rad_to_deg(phi[a]));
+      CHECK(relative_l2(all[a], one.front()) < 1e-14);
+      for (int pol = 0; pol < 2; ++pol) CHECK(all[a].incident_power[pol] == Approx(one.front().incident_power[pol]).epsilon(1e-14));
+    }
+  }
+}
+
 TEST_CASE("mirror symmetry: a mirrored barbule mirrors its pattern", "[solver][species]") {
   const auto dirs = pattern_directions(400).phi_o_rad;
   const ApproximateSolver exact(ApproximateSolver::Currents::reflected, 0.25,
