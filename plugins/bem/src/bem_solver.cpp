@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 
 #include "plumage/error.hpp"
 #include "radiation.hpp"
@@ -49,6 +50,16 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
   sys->mesh = build_mesh(geometry, lambda_nm, options.points_per_wavelength);
   sys->media = media(geometry, lambda_nm, sys->beta);
   const double n = sys->mesh.unknowns();
+  if (options.method == BemOptions::Method::hmatrix) {
+    auto t0 = std::chrono::steady_clock::now();
+    sys->hmatrix = std::make_unique<HMatrix>(sys->mesh, sys->media, sys->k0, sys->beta, options.quadrature,
+                                             options.hmatrix);
+    sys->assembly_seconds = seconds_since(t0);
+    t0 = std::chrono::steady_clock::now();
+    sys->near_field = std::make_unique<NearFieldLU>(sys->hmatrix->take_preconditioner_matrix());
+    sys->factor_seconds = seconds_since(t0);
+    return sys;
+  }
   if (n > options.max_dense_unknowns) {
     throw Error("bem: " + std::to_string(sys->mesh.unknowns()) + " unknowns at " + std::to_string(lambda_nm) +
                 " nm (" + std::to_string(sys->mesh.segments.size()) + " segments) exceed max_dense_unknowns = " +
@@ -76,14 +87,18 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
 Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& options, std::vector<int>* iterations) const {
   if (options.method == BemOptions::Method::dense) return lu->solve(B);
   Eigen::MatrixXcd X = Eigen::MatrixXcd::Zero(B.rows(), B.cols());
-  const Op A = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) { out.noalias() = Z * in; };
+  const Op A = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) {
+    if (hmatrix) hmatrix->apply(in, out);
+    else out.noalias() = Z * in;
+  };
   const Op M = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) {
     if (block_jacobi) block_jacobi->apply(in, out);
     else if (near_field) near_field->apply(in, out);
     else out = in;
   };
   for (Eigen::Index c = 0; c < B.cols(); ++c) {
-    Eigen::VectorXcd x = Eigen::VectorXcd::Zero(B.rows());
+    // warm start: columns are (azimuth, polarisation) pairs, 2 per azimuth
+    Eigen::VectorXcd x = options.warm_start && c >= 2 ? Eigen::VectorXcd(X.col(c - 2)) : Eigen::VectorXcd::Zero(B.rows());
     const GmresResult r = gmres(A, M, B.col(c), x, options.gmres_tolerance, options.gmres_restart,
                                    options.gmres_max_iterations);
     if (!r.converged) {
@@ -166,9 +181,32 @@ std::vector<FarField> BemSolver::solve(const Prepared& prepared, double lambda_n
       fill_rhs(mesh, sys->k0, incident_for(*prep, options_, sys->k0, theta, phi_i[a], pol), B.col(2 * a + pol));
     }
   }
-  const Eigen::MatrixXcd X = sys->solve(B, options_);
+  auto t0 = std::chrono::steady_clock::now();
+  std::vector<int> iterations;
+  const Eigen::MatrixXcd X = sys->solve(B, options_, &iterations);
+  const double solve_s = seconds_since(t0);
+  t0 = std::chrono::steady_clock::now();
   const Eigen::MatrixXcd F = far_field_operator(mesh, sys->k0, theta, phi_o);
   const Eigen::MatrixXcd E = F * X;
+  const double far_s = seconds_since(t0);
+  if (!options_.log_file.empty()) {
+    std::ofstream log(options_.log_file, std::ios::app);
+    log << "lambda_nm " << lambda_nm << " theta_deg " << theta * 180.0 / std::numbers::pi << " unknowns " << n
+        << " segments " << mesh.segments.size() << " assembly_s " << sys->assembly_seconds << " factor_s "
+        << sys->factor_seconds << " solve_s " << solve_s << " far_field_s " << far_s;
+    if (sys->hmatrix) {
+      const HMatrixStats& st = sys->hmatrix->stats();
+      log << " near_s " << st.near_seconds << " aca_s " << st.aca_seconds << " near_pairs " << st.near_pairs
+          << " near_nnz " << st.near_nonzeros << " precond_nnz " << st.preconditioner_nonzeros << " blocks "
+          << st.admissible_blocks << " dense_fallback " << st.dense_blocks << " mean_rank " << st.mean_rank
+          << " max_rank " << st.max_rank << " hmatrix_gb " << st.memory_gb();
+    }
+    if (!iterations.empty()) {
+      log << " iterations";
+      for (int it : iterations) log << " " << it;
+    }
+    log << "\n";
+  }
   std::vector<FarField> out;
   for (std::size_t a = 0; a < phi_i.size(); ++a) {
     FarField ff;

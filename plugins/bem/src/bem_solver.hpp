@@ -20,6 +20,7 @@
 
 #include "assembly.hpp"
 #include "gmres.hpp"
+#include "hmatrix.hpp"
 #include "incident.hpp"
 #include "mesh.hpp"
 #include "plumage/scattering_solver.hpp"
@@ -28,7 +29,10 @@ namespace plumage::bem {
 
 struct BemOptions {
   enum class Incidence { beam, plane_wave };
-  enum class Method { dense, gmres };
+  // dense: LU; gmres: GMRES with the dense matrix as mat-vec; hmatrix: GMRES with the
+  // hierarchical matrix (exact sparse near field + ACA blocks, hmatrix.hpp) as mat-vec and the LU
+  // of (part of) its near field as preconditioner — the solver for large barbules.
+  enum class Method { dense, gmres, hmatrix };
   double points_per_wavelength = 30.0;  // h ≤ λ/(|n| ppw) on both sides of every interface
   Incidence incidence = Incidence::beam;
   Method method = Method::dense;
@@ -47,6 +51,12 @@ struct BemOptions {
   double near_field_factor = 8.0;
   int preconditioner_group = 16;
   QuadratureOptions quadrature;
+  HMatrixOptions hmatrix;
+  // Right-hand sides after the first start GMRES from the solution of the previous azimuth with the
+  // same polarisation (method gmres/hmatrix).
+  bool warm_start = true;
+  // When set, one line of timings and sizes per (λ, θ_i) is appended to this file.
+  std::string log_file;
 };
 
 // The instance-only part: interfaces and the top-surface data of Φ_i.
@@ -71,6 +81,7 @@ struct System {
   std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXcd>>> lu;
   std::unique_ptr<BlockJacobi> block_jacobi;
   std::unique_ptr<NearFieldLU> near_field;
+  std::unique_ptr<HMatrix> hmatrix;
   double assembly_seconds = 0, factor_seconds = 0;
   // Solves for every column of B (LU, or GMRES column by column); `iterations` gets the GMRES
   // iteration count per column (empty for LU).

@@ -19,7 +19,7 @@ GmresResult gmres(const Op& A, const Op& M, const Eigen::VectorXcd& b, Eigen::Ve
     return res;
   }
   V r(b.size()), w(b.size()), z(b.size());
-  std::vector<V> Vb(m + 1), Zb(m);
+  std::vector<V> Vb(m + 1);
   Eigen::MatrixXcd H = Eigen::MatrixXcd::Zero(m + 1, m);
   std::vector<std::complex<double>> cs(m), sn(m), g(m + 1);
   A(x, w);
@@ -32,8 +32,8 @@ GmresResult gmres(const Op& A, const Op& M, const Eigen::VectorXcd& b, Eigen::Ve
     g[0] = rnorm;
     int k = 0;
     for (; k < m && res.iterations < max_iterations; ++k) {
-      M(Vb[k], Zb[k]);
-      A(Zb[k], w);
+      M(Vb[k], z);
+      A(z, w);
       for (int j = 0; j <= k; ++j) {  // modified Gram–Schmidt
         H(j, k) = Vb[j].dot(w);
         w -= H(j, k) * Vb[j];
@@ -66,7 +66,10 @@ GmresResult gmres(const Op& A, const Op& M, const Eigen::VectorXcd& b, Eigen::Ve
       for (int j = i + 1; j < k; ++j) s -= H(i, j) * y[j];
       y[i] = s / H(i, i);
     }
-    for (int j = 0; j < k; ++j) x += y[j] * Zb[j];
+    w.setZero();
+    for (int j = 0; j < k; ++j) w += y[j] * Vb[j];
+    M(w, z);  // right preconditioning: x += M⁻¹ V y
+    x += z;
     A(x, w);
     r = b - w;
     rnorm = r.norm();
@@ -130,6 +133,12 @@ NearFieldLU::NearFieldLU(const Mesh& mesh, const Eigen::MatrixXcd& Z, double fac
   }
   Eigen::SparseMatrix<std::complex<double>> S(n, n);
   S.setFromTriplets(t.begin(), t.end());
+  nnz_ = S.nonZeros();
+  lu_.analyzePattern(S);
+  lu_.factorize(S);
+}
+
+NearFieldLU::NearFieldLU(const Eigen::SparseMatrix<std::complex<double>>& S) {
   nnz_ = S.nonZeros();
   lu_.analyzePattern(S);
   lu_.factorize(S);

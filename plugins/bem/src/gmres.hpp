@@ -20,7 +20,8 @@ struct GmresResult {
   bool converged = false;
 };
 
-// Solves A x = b to ‖b − A x‖ ≤ tol ‖b‖ (x holds the initial guess on entry).
+// Solves A x = b to ‖b − A x‖ ≤ tol ‖b‖ (x holds the initial guess on entry). Stores the
+// restart + 1 Krylov vectors only (the preconditioner is applied once more to their combination).
 GmresResult gmres(const Op& A, const Op& precondition, const Eigen::VectorXcd& b, Eigen::VectorXcd& x, double tol,
                   int restart, int max_iterations);
 
@@ -41,6 +42,8 @@ class BlockJacobi {
 class NearFieldLU {
  public:
   NearFieldLU(const Mesh& mesh, const Eigen::MatrixXcd& Z, double factor);
+  // From a near-field matrix already in sparse form (the H-matrix's exact near field).
+  explicit NearFieldLU(const Eigen::SparseMatrix<std::complex<double>>& S);
   void apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const;
   long nonzeros() const { return nnz_; }
 

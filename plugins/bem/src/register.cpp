@@ -10,20 +10,34 @@ namespace {
 void register_bem(plumage::Registrar& registrar) {
   using plumage::bem::BemOptions;
   static constexpr std::string_view kIncidence[] = {"beam", "plane_wave"};
-  static constexpr std::string_view kMethod[] = {"dense", "gmres"};
+  static constexpr std::string_view kMethod[] = {"dense", "gmres", "hmatrix"};
   registrar.add<plumage::ScatteringSolver>(
       {.kind = "",
        .type = "bem",
        .version = "0.1.0",
        .summary = "full-wave 2.5D boundary elements: multi-region PMCHWT, Galerkin tents, analytic "
-                  "log/1/R parts, junctions, exact 2.5D Gaussian beam, dense LU per (lambda, theta_i)",
+                  "log/1/R parts, junctions, exact 2.5D Gaussian beam; dense LU or GMRES with a hierarchical "
+                  "matrix (ACA) per (lambda, theta_i)",
        .params = {{"points_per_wavelength", "number", "1", "30",
                    "segments per wavelength in the denser side of each interface (h <= lambda/(|n| ppw))"},
                   {"incidence", "choice", "-", "beam",
                    "beam (Gaussian beam with the approximate solver's footprint, per Phi_i) | plane_wave "
                    "(validation bodies; far field as 2D differential scattering width)"},
                   {"window_fraction", "number", "1", "0.25", "beam footprint exp(-x^2/s^2), s = fraction * width"},
-                  {"method", "choice", "-", "dense", "dense (LU) | gmres (near-field-LU preconditioned GMRES; dense mat-vec for now)"},
+                  {"method", "choice", "-", "dense",
+                   "dense (LU) | gmres (near-field-LU preconditioned GMRES, dense mat-vec) | hmatrix (GMRES, "
+                   "hierarchical-matrix mat-vec with ACA blocks, near-field LU preconditioner; large barbules)"},
+                  {"aca_tolerance", "number", "1", "1e-6", "method hmatrix: relative error of each ACA block"},
+                  {"eta", "number", "1", "1", "method hmatrix: admissibility max(diam) <= eta * distance"},
+                  {"leaf_size", "integer", "1", "12", "method hmatrix: segments per leaf cluster"},
+                  {"preconditioner_factor", "number", "1", "0",
+                   "method hmatrix: preconditioner = near-field entries of segments closer than factor * h "
+                   "(0: the whole near field)"},
+                  {"gmres_tolerance", "number", "1", "1e-8", "methods gmres/hmatrix: relative residual"},
+                  {"gmres_restart", "integer", "1", "300", "methods gmres/hmatrix: Krylov vectors kept"},
+                  {"warm_start", "bool", "-", "true",
+                   "methods gmres/hmatrix: start from the previous azimuth's solution (same polarisation)"},
+                  {"log_file", "text", "-", "", "append one line of timings and sizes per (lambda, theta_i)"},
                   {"max_dense_unknowns", "integer", "1", "20000",
                    "refuse dense systems larger than this (memory: 16 N^2 bytes)"}}},
       [](const plumage::ParamView& p, const plumage::PluginContext&) {
@@ -32,8 +46,18 @@ void register_bem(plumage::Registrar& registrar) {
         o.incidence = p.choice_or("incidence", kIncidence, "beam") == "beam" ? BemOptions::Incidence::beam
                                                                               : BemOptions::Incidence::plane_wave;
         o.window_fraction = p.number_or("window_fraction", 0.25, plumage::Limits::positive());
-        o.method = p.choice_or("method", kMethod, "dense") == "dense" ? BemOptions::Method::dense
-                                                                      : BemOptions::Method::gmres;
+        const auto method = p.choice_or("method", kMethod, "dense");
+        o.method = method == "dense"   ? BemOptions::Method::dense
+                   : method == "gmres" ? BemOptions::Method::gmres
+                                       : BemOptions::Method::hmatrix;
+        o.hmatrix.aca_tolerance = p.number_or("aca_tolerance", 1e-6, plumage::Limits::positive());
+        o.hmatrix.eta = p.number_or("eta", 1.0, plumage::Limits::positive());
+        o.hmatrix.leaf_size = static_cast<int>(p.integer_or("leaf_size", 12, plumage::Limits::positive()));
+        o.hmatrix.preconditioner_factor = p.number_or("preconditioner_factor", 0.0, plumage::Limits::non_negative());
+        o.gmres_tolerance = p.number_or("gmres_tolerance", 1e-8, plumage::Limits::positive());
+        o.gmres_restart = static_cast<int>(p.integer_or("gmres_restart", 300, plumage::Limits::positive()));
+        o.warm_start = p.boolean_or("warm_start", true);
+        o.log_file = p.text_or("log_file", "");
         o.max_dense_unknowns = static_cast<int>(p.integer_or("max_dense_unknowns", 20000, plumage::Limits::positive()));
         return std::make_unique<plumage::bem::BemSolver>(o);
       });

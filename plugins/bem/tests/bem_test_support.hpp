@@ -64,7 +64,7 @@ inline PlaneWaveResult solve_plane_wave(const CrossSection& cs, double lambda_nm
   const int n = r.sys->mesh.unknowns();
   Eigen::MatrixXcd B(n, 2);
   for (int pol = 0; pol < 2; ++pol) fill_rhs(r.sys->mesh, r.sys->k0, plane_wave(theta, phi_i, pol), B.col(pol));
-  r.x = r.sys->lu->solve(B);
+  r.x = r.sys->solve(B, opt);
   r.field = far_field_operator(r.sys->mesh, r.sys->k0, theta, phi_o) * r.x;
   return r;
 }

@@ -1,0 +1,235 @@
+// Hierarchical-matrix operator and GMRES (method hmatrix, NOTES.md §5) against the dense matrix,
+// dense LU and the exact cylinder series. [validation]: the long cases (ctest label `validation`).
+#include <tbb/global_control.h>
+
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <regex>
+#include <sstream>
+
+#include "bem_test_support.hpp"
+#include "plumage/species_config.hpp"
+#include "plumage/structure_generator.hpp"
+#include "test_registry.hpp"
+
+using namespace plumage;
+using namespace plumage::bem;
+using namespace plumage::bem::testing;
+
+namespace {
+
+Eigen::VectorXcd random_vector(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> nd;
+  Eigen::VectorXcd x(n);
+  for (int i = 0; i < n; ++i) x[i] = {nd(rng), nd(rng)};
+  return x;
+}
+
+CrossSection coated_cylinder(double lambda, double ppw) {
+  return layered_cylinder({250.0, 350.0}, {Material::keratin(), Material::melanin()}, lambda, ppw);
+}
+
+// Lossless body with three-region junctions (as in test_bem_solver.cpp).
+CrossSection junction_body() {
+  CrossSection cs;
+  auto rect = [](double x0, double z0, double x1, double z1, int nx, int nz) {
+    Polygon p;
+    for (int k = 0; k < nx; ++k) p.push_back({x0 + (x1 - x0) * k / nx, z0});
+    for (int k = 0; k < nz; ++k) p.push_back({x1, z0 + (z1 - z0) * k / nz});
+    for (int k = 0; k < nx; ++k) p.push_back({x1 - (x1 - x0) * k / nx, z1});
+    for (int k = 0; k < nz; ++k) p.push_back({x0, z1 - (z1 - z0) * k / nz});
+    return p;
+  };
+  cs.regions.push_back({rect(-200, -150, 0, 150, 8, 12), Material::constant(1.55), RegionRole::body});
+  cs.regions.push_back({rect(0, -150, 160, 150, 8, 12), Material::constant({1.9, 0.0}), RegionRole::body});
+  cs.regions.push_back({rect(-80, 150, 60, 230, 7, 4), Material::constant(1.3), RegionRole::film});
+  return cs;
+}
+
+double matvec_error(const CrossSection& cs, double lambda, double theta, double ppw, double tol) {
+  BemOptions o;
+  o.points_per_wavelength = ppw;
+  o.method = BemOptions::Method::hmatrix;
+  o.hmatrix.aca_tolerance = tol;
+  const auto prep = prepare_geometry(cs);
+  const auto sys = build_system(prep->geometry, lambda, theta, o);
+  const Eigen::MatrixXcd Z = assemble_dense(sys->mesh, sys->media, sys->k0, sys->beta, o.quadrature);
+  const Eigen::VectorXcd x = random_vector(sys->mesh.unknowns(), 11);
+  Eigen::VectorXcd y;
+  sys->hmatrix->apply(x, y);
+  const Eigen::VectorXcd yd = Z * x;
+  const auto& st = sys->hmatrix->stats();
+  const double err = (y - yd).norm() / yd.norm();
+  std::printf("  N = %d, ACA tol %.0e: |Hx - Zx|/|Zx| = %.2e (%ld blocks, mean rank %.1f, near %.0f per row)\n",
+              sys->mesh.unknowns(), tol, err, st.admissible_blocks, st.mean_rank,
+              double(st.near_nonzeros) / sys->mesh.unknowns());
+  return err;
+}
+
+}  // namespace
+
+TEST_CASE("bem hmatrix: mat-vec vs the dense matrix follows the ACA tolerance") {
+  // oblique (all families coupled) and θ_i = 0 (TE/TM families decouple: zero sub-blocks)
+  for (double theta_deg : {30.0, 0.0}) {
+    const double theta = deg_to_rad(theta_deg);
+    std::vector<double> errs;
+    for (double tol : {1e-4, 1e-6, 1e-8}) {
+      const double e = matvec_error(coated_cylinder(550.0, 30.0), 550.0, theta, 30.0, tol);
+      CHECK(e <= 10.0 * tol);
+      errs.push_back(e);
+    }
+    CHECK(errs[2] < 1e-2 * errs[0]);
+  }
+  CHECK(matvec_error(junction_body(), 500.0, deg_to_rad(20.0), 30.0, 1e-6) <= 1e-5);
+}
+
+TEST_CASE("bem hmatrix: mat-vec does not depend on the thread count") {
+  BemOptions o;
+  o.method = BemOptions::Method::hmatrix;
+  const auto prep = prepare_geometry(coated_cylinder(500.0, 30.0));
+  Eigen::VectorXcd y1, y2;
+  Eigen::VectorXcd x;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    const auto sys = build_system(prep->geometry, 500.0, 0.3, o);
+    x = random_vector(sys->mesh.unknowns(), 5);
+    sys->hmatrix->apply(x, y1);
+  }
+  {
+    tbb::global_control two(tbb::global_control::max_allowed_parallelism, 2);
+    const auto sys = build_system(prep->geometry, 500.0, 0.3, o);
+    sys->hmatrix->apply(x, y2);
+  }
+  CHECK((y1 - y2).norm() == 0.0);
+}
+
+TEST_CASE("bem hmatrix: GMRES with the hierarchical matrix reproduces dense LU (coated cylinder, junction body)") {
+  const double lambda = 500.0, theta = deg_to_rad(30.0);
+  auto run = [&](const CrossSection& cs, const char* name) {
+    BemOptions dense, fast;
+    dense.points_per_wavelength = fast.points_per_wavelength = 20.0;
+    fast.method = BemOptions::Method::hmatrix;
+    fast.hmatrix.aca_tolerance = 1e-8;
+    const auto prep = prepare_geometry(cs);
+    const auto a = build_system(prep->geometry, lambda, theta, dense);
+    const auto b = build_system(prep->geometry, lambda, theta, fast);
+    const int n = a->mesh.unknowns();
+    Eigen::MatrixXcd B(n, 4);
+    for (int c = 0; c < 4; ++c) fill_rhs(a->mesh, a->k0, plane_wave(theta, 0.7 + 0.2 * (c / 2), c % 2), B.col(c));
+    std::vector<int> its;
+    const Eigen::MatrixXcd xa = a->solve(B, dense), xb = b->solve(B, fast, &its);
+    const double diff = (xa - xb).norm() / xa.norm();
+    std::printf("  GMRES + H %s: N = %d, iterations %d %d %d %d (warm start from the previous azimuth), "
+                "|x_H - x_LU| / |x_LU| = %.1e\n", name, n, its[0], its[1], its[2], its[3], diff);
+    CHECK(diff <= 1e-5);
+    CHECK(its[0] < 300);
+  };
+  run(coated_cylinder(lambda, 20.0), "coated cylinder");
+  run(junction_body(), "junction body");
+}
+
+namespace {
+void cylinders_fast_path(bool large) {
+  BemOptions opt;  // production mesh, default ACA tolerance
+  opt.method = BemOptions::Method::hmatrix;
+  const auto phi_o = full_circle(360);
+  const double phi_i = 0.4;
+  struct Case {
+    const char* name;
+    std::vector<double> radii;
+    std::vector<Material> mats;
+  };
+  std::vector<Case> cases;
+  if (large) {
+    cases = {{"keratin 250 + melanin shell 100", {250.0, 350.0}, {Material::keratin(), Material::melanin()}},
+             {"keratin r=1000", {1000.0}, {Material::keratin()}}};
+  } else {
+    cases = {{"keratin r=250", {250.0}, {Material::keratin()}}, {"melanin r=100", {100.0}, {Material::melanin()}}};
+  }
+  double worst = 0.0;
+  for (const auto& c : cases) {
+    for (double lambda : {400.0, 550.0, 700.0}) {
+      for (double theta_deg : {0.0, 30.0}) {
+        const double theta = deg_to_rad(theta_deg);
+        const auto res = solve_plane_wave(layered_cylinder(c.radii, c.mats, lambda, opt.points_per_wavelength), lambda,
+                                          theta, phi_i, phi_o, opt);
+        for (int pol = 0; pol < 2; ++pol) {
+          std::vector<double> r;
+          std::vector<std::complex<double>> m;
+          for (std::size_t k = 0; k < c.radii.size(); ++k) r.push_back(c.radii[k] / 1000.0), m.push_back(c.mats[k].index(lambda));
+          const auto s = r.size() == 1 ? oracle::solve_homogeneous_bh(r[0], m[0], lambda / 1000.0, theta, pol + 1)
+                                       : oracle::solve_layered(r, m, lambda / 1000.0, theta, pol + 1);
+          const double e = compare_with_series(res.field, pol, s, phi_i, phi_o).intensity_l2;
+          std::printf("  fast path %-32s lambda %3.0f theta %2.0f pol %d: N = %5d  intensity L2 %.2e\n", c.name, lambda,
+                      theta_deg, pol + 1, res.sys->mesh.unknowns(), e);
+          CHECK(e <= 1e-3);
+          worst = std::max(worst, e);
+        }
+      }
+    }
+  }
+  std::printf("  fast path worst intensity L2: %.2e\n", worst);
+}
+}  // namespace
+
+TEST_CASE("bem hmatrix: cylinders vs exact series through the fast path (keratin r = 250, melanin r = 100)") {
+  cylinders_fast_path(false);
+}
+
+TEST_CASE("bem hmatrix: coated cylinder and keratin r = 1 um vs exact series through the fast path", "[validation]") {
+  cylinders_fast_path(true);
+}
+
+TEST_CASE("bem hmatrix: hummingbird barbule segment, GMRES + H vs dense LU (beam, 3 azimuths)", "[validation]") {
+  // instance 0 of the hummingbird with the outline width set to 0.3 um (as `plumage bench bem`
+  // builds its segments), 12 points per wavelength
+  std::ifstream in(std::string(PLUMAGE_SOURCE_DIR) + "/configs/species/hummingbird.yaml");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const auto outline = yaml.find("\n  outline:");
+  REQUIRE(outline != std::string::npos);
+  std::string tail = yaml.substr(outline);
+  tail = std::regex_replace(tail, std::regex("(\n    width_um:)[^\n]*"), "$1 0.3", std::regex_constants::format_first_only);
+  tail = std::regex_replace(tail, std::regex("(\n    corner_um:)[^\n]*"), "$1 0.03", std::regex_constants::format_first_only);
+  const auto path = std::filesystem::temp_directory_path() / "plumage-test-bem-hmatrix-segment.yaml";
+  std::ofstream(path) << yaml.substr(0, outline) << tail;
+  const auto cfg = load_species_config(path, plumage::testing::registry());
+  std::filesystem::remove(path);
+  const CrossSection cs = cfg.structure->generate(0);
+  const auto prep = prepare_geometry(cs);
+  const double lambda = 550.0, theta = 0.0;
+  BemOptions dense, fast;
+  dense.points_per_wavelength = fast.points_per_wavelength = 12.0;
+  fast.method = BemOptions::Method::hmatrix;
+  const auto a = build_system(prep->geometry, lambda, theta, dense);
+  const auto b = build_system(prep->geometry, lambda, theta, fast);
+  const int n = a->mesh.unknowns();
+  const std::vector<double> phis{std::acos(0.05), std::acos(0.5), 0.0};
+  Eigen::MatrixXcd B(n, 6);
+  for (int c = 0; c < 6; ++c) fill_rhs(a->mesh, a->k0, incident_for(*prep, dense, a->k0, theta, phis[c / 2], c % 2), B.col(c));
+  std::vector<int> its;
+  const Eigen::MatrixXcd xa = a->solve(B, dense), xb = b->solve(B, fast, &its);
+  const auto phi_o = full_circle(360);
+  const Eigen::MatrixXcd F = far_field_operator(a->mesh, a->k0, theta, phi_o);
+  const Eigen::MatrixXcd fa = F * xa, fb = F * xb;
+  double worst = 0.0;
+  for (int c = 0; c < 6; ++c) {
+    double num = 0, den = 0;
+    for (Eigen::Index d = 0; d < fa.rows() / 3; ++d) {
+      double ia = 0, ib = 0;
+      for (int k = 0; k < 3; ++k) ia += std::norm(fa(3 * d + k, c)), ib += std::norm(fb(3 * d + k, c));
+      num += (ia - ib) * (ia - ib), den += ia * ia;
+    }
+    worst = std::max(worst, std::sqrt(num / den));
+  }
+  std::printf("  hummingbird 0.3 um segment, 12 ppw: N = %d, GMRES iterations", n);
+  for (int i : its) std::printf(" %d", i);
+  std::printf("; |x_H - x_LU|/|x_LU| = %.1e, far-field intensity L2 %.1e\n", (xa - xb).norm() / xa.norm(), worst);
+  CHECK((xa - xb).norm() <= 1e-4 * xa.norm());
+  CHECK(worst <= 1e-4);
+}
