@@ -26,10 +26,14 @@ namespace {
 
 struct BemBench {
   std::string config = "configs/species/hummingbird.yaml";
-  std::vector<double> widths_um{10.0, 0.3};
+  std::vector<double> widths_um{10.0};
   double lambda_nm = 550;
   double theta_deg = 0;
   double ppw = 30;
+  std::string method = "hmatrix";
+  double aca_tolerance = 1e-6;
+  double gmres_tolerance = 1e-6;
+  int azimuths = 20;  // fewer: a subset spread over the 20 (cos φ_i = 0.05 b), stated in the record
   int max_dense_unknowns = 20000;
   std::string record;
 };
@@ -63,9 +67,16 @@ std::filesystem::path segment_config(const std::string& file, double width_um) {
 }
 
 struct Run {
-  double width_um = 0, approx_s = 0, bem_s = 0, rss_gb = 0;
-  std::string status;
+  double width_um = 0, approx_s = 0, bem_s = 0, bem_cpu_s = 0, rss_gb = 0;
+  std::string status, log;  // log: the solver's own line (sizes, time split, iterations per RHS)
 };
+
+double process_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
 
 Run run_width(AppContext& context, const BemBench& b, double width_um) {
   Run r;
@@ -76,7 +87,11 @@ Run run_width(AppContext& context, const BemBench& b, double width_um) {
   const CrossSection cs = cfg.structure->generate(0);
   const double theta = deg_to_rad(b.theta_deg);
   std::vector<double> phi_i;
-  for (int k = 1; k <= 20; ++k) phi_i.push_back(std::acos(0.05 * k));
+  if (b.azimuths >= 20 || b.azimuths < 2) {
+    for (int k = 1; k <= 20; ++k) phi_i.push_back(std::acos(0.05 * k));
+  } else {
+    for (int j = 0; j < b.azimuths; ++j) phi_i.push_back(std::acos(0.05 * (1 + std::lround(19.0 * j / (b.azimuths - 1)))));
+  }
   const auto phi_o = pattern_directions(400).phi_o_rad;
   // approximate solver (the species' own), best of 3
   auto approx = context.registry().create_named<ScatteringSolver>("approximate", ParamView{}, context.registry().context());
@@ -87,21 +102,33 @@ Run run_width(AppContext& context, const BemBench& b, double width_um) {
     const auto ff = approx->solve(*prep, b.lambda_nm, theta, phi_i, phi_o);
     r.approx_s = std::min(r.approx_s, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
   }
+  const auto log_path = std::filesystem::temp_directory_path() /
+                        ("plumage-bench-bem-" + std::to_string(getpid()) + ".log");
+  std::filesystem::remove(log_path);
   std::ostringstream opts;
-  opts << "points_per_wavelength: " << b.ppw << "\nmax_dense_unknowns: " << b.max_dense_unknowns << "\n";
+  opts << "points_per_wavelength: " << b.ppw << "\nmax_dense_unknowns: " << b.max_dense_unknowns
+       << "\nmethod: " << b.method << "\nlog_file: " << log_path.string() << "\n";
+  if (b.method != "dense") {
+    opts << "gmres_tolerance: " << b.gmres_tolerance << "\n";
+    if (b.method == "hmatrix") opts << "aca_tolerance: " << b.aca_tolerance << "\n";
+  }
   const ConfigDocument doc = ConfigDocument::parse(opts.str(), "bench bem options");
   auto bem = context.registry().create_named<ScatteringSolver>("bem", doc.root(), context.registry().context());
   const auto t0 = std::chrono::steady_clock::now();
+  const double cpu0 = process_cpu_seconds();
   try {
     const auto prep = bem->prepare(cs, cfg.reflection);
     const auto ff = bem->solve(*prep, b.lambda_nm, theta, phi_i, phi_o);
     r.bem_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    r.status = "solved (dense LU)";
+    r.bem_cpu_s = process_cpu_seconds() - cpu0;
+    r.status = "solved (" + b.method + ")";
   } catch (const Error& e) {
     r.bem_s = -1;
     r.status = std::string("not solved: ") + e.what();
   }
   r.rss_gb = peak_rss_gb();
+  if (std::ifstream log(log_path); log) std::getline(log, r.log);
+  std::filesystem::remove(log_path);
   return r;
 }
 
@@ -109,25 +136,35 @@ void bench_bem(AppContext& context, const BemBench& b) {
   std::ostringstream md;
   md << std::setprecision(3);
   md << "## bem\n\n"
-     << "Full-wave 2.5D BEM (plug-in `bem`, " << b.ppw << " points per wavelength, dense LU) on `" << b.config
+     << "Full-wave 2.5D BEM (plug-in `bem`, " << b.ppw << " points per wavelength, method " << b.method;
+  if (b.method == "hmatrix") md << ", ACA tolerance " << b.aca_tolerance;
+  if (b.method != "dense") md << ", GMRES tolerance " << b.gmres_tolerance;
+  md << ") on `" << b.config
      << "` instance 0 with the outline width replaced (corners min(1 um, W/10)), lambda = " << b.lambda_nm
      << " nm, theta_i = " << b.theta_deg
-     << " deg, 20 incident azimuths (cos phi_i = 0.05 b), both polarizations, 400 pattern directions. "
+     << " deg, " << (b.azimuths >= 20 || b.azimuths < 2 ? 20 : b.azimuths)
+     << " incident azimuths (cos phi_i = 0.05 b; fewer than 20 = a subset spread over them, for both solvers), "
+        "both polarizations, 400 pattern directions. "
         "Approximate solver: the same barbule and directions, prepare + solve, best of 3. Peak RSS of "
-        "the whole process so far. Goal (issue 6): 10 um segment in <= 600 s and <= 8 GB; the fast "
-        "(GMRES + compressed mat-vec) solver is not implemented, so wide segments are refused by the "
-        "dense solver's size guard (message below).\n\n"
-     << "| machine | command | date | width um | BEM s | approximate s | ratio | peak RSS GB | status | goal |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|\n";
+        "the whole process so far; BEM CPU = process CPU time during the BEM solve (both threads). Goal "
+        "(issue 6): 10 um segment in <= 600 s and <= 8 GB. The solver's own line (unknowns, assembly = "
+        "near field + ACA, factor = near-field LU, solve = GMRES for all 40 right-hand sides, far field, "
+        "H-matrix sizes, GMRES iterations per right-hand side) follows the table.\n\n"
+     << "| machine | command | date | width um | BEM s | BEM CPU s | approximate s | ratio | peak RSS GB | status | goal |\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::ostringstream logs;
   for (double w : b.widths_um) {
     const Run r = run_width(context, b, w);
-    md << "| " << machine_description() << " | `plumage bench bem` | " << today_iso() << " | " << w << " | "
-       << (r.bem_s >= 0 ? std::to_string(r.bem_s) : std::string("-")) << " | " << r.approx_s << " | "
+    md << "| " << machine_description() << " | `plumage bench bem --ppw " << b.ppw << "` | " << today_iso() << " | " << w
+       << " | " << (r.bem_s >= 0 ? std::to_string(r.bem_s) : std::string("-")) << " | "
+       << (r.bem_s >= 0 ? std::to_string(r.bem_cpu_s) : std::string("-")) << " | " << r.approx_s << " | "
        << (r.bem_s >= 0 ? std::to_string(r.bem_s / r.approx_s) + "x" : std::string("-")) << " | " << r.rss_gb
        << " | " << r.status << " | <= 600 s, <= 8 GB (W = 10) |\n";
-    std::cout << "width " << w << " um: BEM " << r.bem_s << " s, approximate " << r.approx_s << " s, peak RSS "
-              << r.rss_gb << " GB; " << r.status << "\n";
+    std::cout << "width " << w << " um: BEM " << r.bem_s << " s (CPU " << r.bem_cpu_s << " s), approximate "
+              << r.approx_s << " s, peak RSS " << r.rss_gb << " GB; " << r.status << "\n" << r.log << "\n";
+    if (!r.log.empty()) logs << "\nW = " << w << " um: `" << r.log << "`\n";
   }
+  md << logs.str();
   if (!b.record.empty()) {
     record_benchmark(b.record, "bem", md.str());
     std::cerr << "recorded in " << b.record << "\n";
@@ -145,6 +182,10 @@ void add_bench_bem_command(CLI::App& bench, AppContext& context) {
   cmd->add_option("--theta-deg", b->theta_deg, "theta_i")->capture_default_str();
   cmd->add_option("--ppw", b->ppw, "BEM points per wavelength")->capture_default_str();
   cmd->add_option("--max-dense-unknowns", b->max_dense_unknowns, "BEM dense size guard")->capture_default_str();
+  cmd->add_option("--azimuths", b->azimuths, "incident azimuths (20 = all; fewer = a spread subset)")->capture_default_str();
+  cmd->add_option("--method", b->method, "BEM method: hmatrix | dense | gmres")->capture_default_str();
+  cmd->add_option("--aca-tolerance", b->aca_tolerance, "BEM ACA tolerance (method hmatrix)")->capture_default_str();
+  cmd->add_option("--gmres-tolerance", b->gmres_tolerance, "BEM GMRES relative residual")->capture_default_str();
   cmd->add_option("--record", b->record, "Markdown file to record the result in (e.g. docs/benchmarks.md)");
   cmd->callback([&context, b] { bench_bem(context, *b); });
 }

@@ -35,6 +35,9 @@ Local8 local_pair(const Segment& A, const Segment& B, const PairIntegrals& in, i
 // Unlike P = n̂_A·(X, Z) and Q = n̂_B·(X, Z), these are smooth functions of the two positions only,
 // so ACA compresses them reliably (the 8×8 local blocks contain factors such as t̂_A·n̂_B that are
 // piecewise constant over a cluster: on the junction body ACA on those left 1e-4 mat-vec errors).
+// They are stored divided by h_A h_B (averages over the two segments): the generator's sub-nm edges
+// next to 10 nm segments would otherwise get ACA errors ε‖I‖ that the tent-derivative terms
+// (÷ h_A h_B) amplify ~10³× (0.3 µm hummingbird segment: solution 5.7e-2 off dense LU).
 struct FarKernels {
   Block2 k[3];
 };
@@ -54,7 +57,7 @@ FarKernels far_kernels(const Segment& A, const Segment& B, cplx gamma, int point
       const H01 h = hankel1_01(gamma * R);
       const cplx G = 0.25 * kI * h.h0;
       const cplx dG = -0.25 * kI * gamma * h.h1;
-      const double w = g.w[a] * g.w[b] * A.h * B.h;
+      const double w = g.w[a] * g.w[b];  // per unit length of both segments (see FarKernels)
       for (int i = 0; i < 2; ++i) {
         for (int j = 0; j < 2; ++j) {
           const double wn = w * Na[i] * Nb[j];
@@ -254,9 +257,13 @@ HMatrix::HMatrix(const Mesh& mesh, const std::vector<Medium>& md, double k0, dou
   // --- near field: unordered segment pairs of the inadmissible leaf blocks, as in assemble_dense
   auto t0 = std::chrono::steady_clock::now();
   struct Pair {
-    int dom, a, b;  // mesh segment indices, a ≤ b in cluster order
+    int dom, a, b;  // mesh segment indices, a before b in mesh.domain_segments[dom]
   };
   std::vector<Pair> pairs;
+  std::vector<std::vector<int>> pos(mesh.a_count, std::vector<int>(mesh.segments.size(), -1));
+  for (int d = 0; d < mesh.a_count; ++d) {
+    for (std::size_t k = 0; k < mesh.domain_segments[d].size(); ++k) pos[d][mesh.domain_segments[d][k]] = static_cast<int>(k);
+  }
   for (int d = 0; d < mesh.a_count; ++d) {
     const ClusterTree& t = trees[d];
     for (const BlockPair& bp : parts[d].near) {
@@ -264,7 +271,13 @@ HMatrix::HMatrix(const Mesh& mesh, const std::vector<Medium>& md, double k0, dou
       const Cluster& c = t.nodes[bp.col];
       if (r.begin > c.begin) continue;  // the mirrored block is filled from this one
       for (int x = r.begin; x < r.end; ++x) {
-        for (int y = (bp.row == bp.col ? x : c.begin); y < c.end; ++y) pairs.push_back({d, t.order[x], t.order[y]});
+        for (int y = (bp.row == bp.col ? x : c.begin); y < c.end; ++y) {
+          // test segment = the earlier one in the domain's list, as assemble_dense integrates it (the
+          // near rules are not symmetric; with sub-nm generator edges the two orders differ by ~1e-3)
+          int a = t.order[x], b = t.order[y];
+          if (pos[d][a] > pos[d][b]) std::swap(a, b);
+          pairs.push_back({d, a, b});
+        }
       }
     }
   }
@@ -429,14 +442,15 @@ void HMatrix::apply_block(const Domain& d, const LowRank& b, const Eigen::Vector
       const cplx xz0 = sg * xl[8 * s + 4 * F + 2], xz1 = sg * xl[8 * s + 4 * F + 3];
       const cplx w = (xt1 - xt0) / d.h[s];
       const cplx xt[2] = {xt0, xt1}, xz[2] = {xz0, xz1};
+      const double hb = d.h[s];  // kernels are stored ÷ h_A h_B
       for (int j = 0; j < 2; ++j) {
         const int row = 2 * kb + j;
-        R(row, 6 * F + 0) = d.tx[s] * xt[j];
-        R(row, 6 * F + 1) = d.tz[s] * xt[j];
-        R(row, 6 * F + 2) = w;
-        R(row, 6 * F + 3) = xz[j];
-        R(row, 6 * F + 4) = d.nx[s] * xt[j];
-        R(row, 6 * F + 5) = d.nz[s] * xt[j];
+        R(row, 6 * F + 0) = hb * d.tx[s] * xt[j];
+        R(row, 6 * F + 1) = hb * d.tz[s] * xt[j];
+        R(row, 6 * F + 2) = hb * w;
+        R(row, 6 * F + 3) = hb * xz[j];
+        R(row, 6 * F + 4) = hb * d.nx[s] * xt[j];
+        R(row, 6 * F + 5) = hb * d.nz[s] * xt[j];
       }
     }
   }
@@ -445,14 +459,18 @@ void HMatrix::apply_block(const Domain& d, const LowRank& b, const Eigen::Vector
     if (b.V[kernel].size() == 0) return b.U[kernel] * in;
     return b.U[kernel] * (b.V[kernel] * in);
   };
-  const Eigen::MatrixXcd IR = mul(0, R);
+  Eigen::MatrixXcd IR = mul(0, R);
   // X applied to [n_x x_t (J), x_z (J), n_x x_t (M), x_z (M)], Z to the n_z counterparts
   Eigen::MatrixXcd RX(2 * nc, 4), RZ(2 * nc, 4);
   for (int F = 0; F < 2; ++F) {
     RX.col(2 * F) = R.col(6 * F + 4), RX.col(2 * F + 1) = R.col(6 * F + 3);
     RZ.col(2 * F) = R.col(6 * F + 5), RZ.col(2 * F + 1) = R.col(6 * F + 3);
   }
-  const Eigen::MatrixXcd XR = mul(1, RX), ZR = mul(2, RZ);
+  Eigen::MatrixXcd XR = mul(1, RX), ZR = mul(2, RZ);
+  for (int ka = 0; ka < nr; ++ka) {
+    const double ha = d.h[b.r0 + ka];
+    IR.middleRows(2 * ka, 2) *= ha, XR.middleRows(2 * ka, 2) *= ha, ZR.middleRows(2 * ka, 2) *= ha;
+  }
   out.setZero(8 * nr);
   const cplx bE = 1.0 / d.eps;  // L[1, 1/ε] on J (E rows), L[ε, 1] on M (H rows)
   const cplx aH = d.eps;
