@@ -41,6 +41,13 @@ struct CrystalCell {
   Material core = Material::air();
   Material channel = Material::air();
   double expected_peak_nm = 0;  // 0 when not given
+  // Numerics of the periodic FDTD table builder for this cell (optional `fdtd:` map; the
+  // measured reason per crystal is in plugins/fdtd_periodic/NOTES.md §3a): refit of the materials
+  // against the Yee numerical dispersion, exact (chord) fill fractions of mixed cells, and the anchors
+  // per entry of the grazing continuation.
+  bool fdtd_dispersion_correction = true;
+  bool fdtd_exact_fill = true;
+  int fdtd_grazing_anchors = 2;  // anchors of the grazing continuation (Z polynomial in κ² of degree − 1)
 
   double rod_depth_nm(int row) const { return cortex_nm + 0.5 * rod_diameter_nm + row * a_z_nm; }
   double depth_nm() const { return rod_depth_nm(rows - 1) + 0.5 * rod_diameter_nm; }

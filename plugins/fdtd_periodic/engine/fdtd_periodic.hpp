@@ -132,8 +132,15 @@ struct SimParams {
     double substrate_below = 0.30;///< substrate between structure_depth and the bottom PML (µm)
     bool compute_transmission = false;
     double transmission_z = -1.0; ///< < 0: structure_depth + substrate_below/2
-    int supersample = 8;          ///< subpixel-smoothing samples per axis
+    int supersample = 8;          ///< subpixel-smoothing samples per axis (exact_fill = false)
+    /// Fill fractions of mixed sites: true = exact chords × 8-point Gauss in z on every site;
+    /// false = 9-probe mixed test and a supersample² point sample (NOTES.md §3).
+    bool exact_fill = true;
     bool smoothing = true;
+    /// Correct the Yee numerical dispersion of every non-ambient material for each run (fixed
+    /// k_x, k_y, h, dt): ε∞ and pole amplitudes refitted over the valid band so that the grid's
+    /// k_z equals the exact one (NOTES.md §3a). Off: the plain scheme (error ∝ (k h)²).
+    bool dispersion_correction = true;
     double kz_min = 0.25;         ///< only frequencies with k_z/k0 ≥ kz_min are returned valid
     double source_min_smoothing = 0.02;   ///< lower bound of the source spectrum edge width (1/µm)
     /// Number of source sheets (1–4) with binomial weights (1), (1,−1), (1,−2,1), (1,−3,3,−1)

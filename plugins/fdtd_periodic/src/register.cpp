@@ -3,6 +3,7 @@
 // Provides:
 //   table_builder "fdtd_periodic"   photonic-crystal reflection tables from the periodic 2.5D FDTD
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string_view>
 
@@ -28,6 +29,11 @@ class FdtdTableBuilder final : public TableBuilder {
     options_.sim.dft_tol = params.number_or("dft_tol", 3e-4, Limits::positive());
     options_.sim.courant = params.number_or("courant", 0.95, Limits::closed(0.05, 1.0));
     options_.sim.smoothing = params.boolean_or("smoothing", true);
+    // Unset: the crystal's own choice (crystal config `fdtd:` map, default on).
+    if (params.has("dispersion_correction")) dispersion_correction_ = params.boolean_or("dispersion_correction", true);
+    if (params.has("exact_fill")) exact_fill_ = params.boolean_or("exact_fill", true);
+    if (params.has("grazing_anchors"))
+      grazing_anchors_ = static_cast<int>(params.integer_or("grazing_anchors", 2, Limits::closed(1, 5)));
     options_.sim.substrate_below = params.number_or("substrate_below_um", 0.30, Limits::positive());
     options_.sim.air_above = params.number_or("air_above_um", 0.30, Limits::positive());
     options_.checkpoint = params.text_or("checkpoint", "");
@@ -43,10 +49,16 @@ class FdtdTableBuilder final : public TableBuilder {
         {"threads", "integer", "1", "2", "worker threads (independent runs)"},
         {"pml_cells", "integer", "1", "24", "CPML thickness above and below"},
         {"kz_min", "number", "1", "0.25",
-         "entries with cos(theta)cos(phi) below this are blended into the analytic grazing limit"},
+         "entries with cos(theta)cos(phi) below this are continued to the grazing limit (impedance form, NOTES.md 5a)"},
+        {"grazing_anchors", "integer", "1", "the crystal's (fdtd: map; default 2)",
+         "anchors per continued entry at k_z/k0 = kz_min + 0.01 + 0.05 m (Z polynomial in k_z^2 of degree anchors - 1)"},
         {"dft_tol", "number", "1", "3e-4", "stop when the reflected DFTs change by less than this"},
         {"courant", "number", "1", "0.95", "time step as a fraction of the Courant limit"},
         {"smoothing", "bool", "-", "true", "subpixel smoothing of material interfaces"},
+        {"dispersion_correction", "bool", "-", "the crystal's (fdtd: map; default true)",
+         "refit each material per run so the Yee grid's k_z is the exact one (NOTES.md 3a)"},
+        {"exact_fill", "bool", "-", "the crystal's (fdtd: map; default true)",
+         "fill fractions of mixed cells from exact circle chords (false: 8 x 8 point sample)"},
         {"substrate_below_um", "number", "um", "0.30", "keratin between the last row and the bottom PML"},
         {"air_above_um", "number", "um", "0.30", "air between the surface and the top PML"},
         {"checkpoint", "text", "-", "none", "file of finished runs: a rerun with the same cell and grid resumes from it"},
@@ -56,18 +68,25 @@ class FdtdTableBuilder final : public TableBuilder {
   ReflectionTable build(const CrystalCell& cell, const TableGrid& grid, Progress progress) const override {
     fdtd_table::Options o = options_;
     o.nx = std::max(4, static_cast<int>(std::lround(cell.a_x_nm / resolution_nm_)));
+    o.sim.dispersion_correction = dispersion_correction_.value_or(cell.fdtd_dispersion_correction);
+    o.sim.exact_fill = exact_fill_.value_or(cell.fdtd_exact_fill);
+    o.grazing_anchors = grazing_anchors_.value_or(cell.fdtd_grazing_anchors);
     TableMetadata meta;
     meta.crystal = cell.name;
     meta.period_nm = cell.a_x_nm;
     meta.producer = "plumage fdtd_periodic 1.0.0 fidelity=" + fidelity_ +
-                    " nx=" + std::to_string(o.nx) + " k_step=" + std::to_string(o.k_step_per_um);
+                    " nx=" + std::to_string(o.nx) + " k_step=" + std::to_string(o.k_step_per_um) +
+                    " engine=2 (exact_fill " + (o.sim.exact_fill ? "on" : "off") + ", dispersion_correction " +
+                    (o.sim.dispersion_correction ? "on" : "off") + ") grazing_anchors=" + std::to_string(o.grazing_anchors);
     std::ostringstream tag;
     tag.precision(17);
     tag << cell.name << ";" << static_cast<int>(cell.lattice) << ";" << cell.a_x_nm << ";" << cell.a_z_nm << ";"
         << cell.rod_diameter_nm << ";" << cell.core_diameter_nm << ";" << cell.channel_diameter_nm << ";"
         << cell.rows << ";" << cell.cortex_nm << ";" << cell.host.name() << ";" << cell.rod.name() << ";"
         << cell.core.name() << ";" << cell.channel.name() << ";" << o.sim.smoothing << ";" << o.sim.courant << ";"
-        << o.sim.air_above << ";" << o.sim.substrate_below;
+        << o.sim.air_above << ";" << o.sim.substrate_below
+        // engine revision 2: exact fill fractions + dispersion correction (runs of rev 1 are not reused)
+        << ";engine2;" << o.sim.dispersion_correction << ";" << o.sim.exact_fill << ";" << o.grazing_anchors;
     o.checkpoint_tag = tag.str();
     return fdtd_table::build_table(
         [&cell](double lambda_um) { return fdtd_table::cell_from_crystal(cell, lambda_um); },
@@ -78,6 +97,8 @@ class FdtdTableBuilder final : public TableBuilder {
   std::string fidelity_;
   double resolution_nm_ = 10.0;
   fdtd_table::Options options_;
+  std::optional<bool> dispersion_correction_, exact_fill_;
+  std::optional<int> grazing_anchors_;
 };
 
 void register_fdtd_periodic(Registrar& registrar) {

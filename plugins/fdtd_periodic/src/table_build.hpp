@@ -35,6 +35,7 @@ struct Options {
   std::string checkpoint_tag;  // identifies the cell (e.g. its config hash)
   // Entries with k_z/k0 < sim.kz_min: anchors per entry of the grazing continuation
   // (grazing.hpp; Z polynomial in κ² of degree anchors − 1).
+  // (per crystal: CrystalCell::fdtd_grazing_anchors; 3 for magpie and peacock, NOTES §5a)
   int grazing_anchors = 2;
 };
 

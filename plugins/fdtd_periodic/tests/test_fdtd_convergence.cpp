@@ -64,6 +64,8 @@ TEST_CASE("convergence ladder of mallard, magpie and peacock crystals", "[valida
     for (double h : hs_nm) {
       fdtd::SimParams p;
       p.nx = std::max(4, static_cast<int>(std::lround(cc.a_x_nm / h)));
+      p.dispersion_correction = cc.fdtd_dispersion_correction;  // the crystal's numerics (NOTES §3a)
+      p.exact_fill = cc.fdtd_exact_fill;
       nxs.push_back(p.nx);
       rungs.push_back(fdtd::run_batch(cell, jobs, omegas, p, 2));
       double cpu = 0;

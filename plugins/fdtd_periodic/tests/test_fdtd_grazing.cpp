@@ -120,6 +120,9 @@ TEST_CASE("grazing continuation of crystal tables against exact-eps runs", "[val
     fdtd_table::Options opt;
     opt.nx = static_cast<int>(std::lround(cc.a_x_nm / 10.0));  // production grid step
     opt.k_step_per_um = 0.0;
+    opt.sim.dispersion_correction = cc.fdtd_dispersion_correction;  // the crystal's numerics (NOTES §3a)
+    opt.sim.exact_fill = cc.fdtd_exact_fill;
+    opt.grazing_anchors = cc.fdtd_grazing_anchors;
     fdtd_table::Options ref = opt;
     ref.sim.kz_min = 0.04;  // every entry simulated: the reference
     const ReflectionTable tr = fdtd_table::build_table(make, ax, g, {}, ref, {});
