@@ -148,7 +148,7 @@ void bench_bem(AppContext& context, const BemBench& b) {
         "Approximate solver: the same barbule and directions, prepare + solve, best of 3. Peak RSS of "
         "the whole process so far; BEM CPU = process CPU time during the BEM solve (both threads). Goal "
         "(issue 6): 10 um segment in <= 600 s and <= 8 GB. The solver's own line (unknowns, assembly = "
-        "near field + ACA, factor = near-field LU, solve = GMRES for all 40 right-hand sides, far field, "
+        "near field + ACA, factor = near-field LU, solve = GMRES for all right-hand sides, far field, "
         "H-matrix sizes, GMRES iterations per right-hand side) follows the table.\n\n"
      << "| machine | command | date | width um | BEM s | BEM CPU s | approximate s | ratio | peak RSS GB | status | goal |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|\n";
