@@ -45,8 +45,9 @@ struct CrystalCell {
   // measured reason per crystal is in plugins/fdtd_periodic/NOTES.md §3a): refit of the materials
   // against the Yee numerical dispersion, exact (chord) fill fractions of mixed cells, and the anchors
   // per entry of the grazing continuation.
-  bool fdtd_dispersion_correction = true;
-  bool fdtd_exact_fill = true;
+  // Defaults off: the plain scheme of the cached production tables (opt in per crystal).
+  bool fdtd_dispersion_correction = false;
+  bool fdtd_exact_fill = false;
   int fdtd_grazing_anchors = 2;  // anchors of the grazing continuation (Z polynomial in κ² of degree − 1)
 
   double rod_depth_nm(int row) const { return cortex_nm + 0.5 * rod_diameter_nm + row * a_z_nm; }

@@ -26,8 +26,8 @@ CrystalCell parse_crystal_cell(const ParamView& node) {
   c.cortex_nm = node.number("cortex_nm", Limits::non_negative());
   c.expected_peak_nm = node.number_or("expected_peak_nm", 0.0, Limits::non_negative());
   if (auto f = node.child_if("fdtd")) {
-    c.fdtd_dispersion_correction = f->boolean_or("dispersion_correction", true);
-    c.fdtd_exact_fill = f->boolean_or("exact_fill", true);
+    c.fdtd_dispersion_correction = f->boolean_or("dispersion_correction", false);
+    c.fdtd_exact_fill = f->boolean_or("exact_fill", false);
     c.fdtd_grazing_anchors = static_cast<int>(f->integer_or("grazing_anchors", 2, Limits::closed(1, 5)));
   }
   if (auto m = node.child_if("materials")) {

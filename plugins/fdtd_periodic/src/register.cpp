@@ -29,9 +29,9 @@ class FdtdTableBuilder final : public TableBuilder {
     options_.sim.dft_tol = params.number_or("dft_tol", 3e-4, Limits::positive());
     options_.sim.courant = params.number_or("courant", 0.95, Limits::closed(0.05, 1.0));
     options_.sim.smoothing = params.boolean_or("smoothing", true);
-    // Unset: the crystal's own choice (crystal config `fdtd:` map, default on).
-    if (params.has("dispersion_correction")) dispersion_correction_ = params.boolean_or("dispersion_correction", true);
-    if (params.has("exact_fill")) exact_fill_ = params.boolean_or("exact_fill", true);
+    // Unset: the crystal's own choice (crystal config `fdtd:` map, default off).
+    if (params.has("dispersion_correction")) dispersion_correction_ = params.boolean_or("dispersion_correction", false);
+    if (params.has("exact_fill")) exact_fill_ = params.boolean_or("exact_fill", false);
     if (params.has("grazing_anchors"))
       grazing_anchors_ = static_cast<int>(params.integer_or("grazing_anchors", 2, Limits::closed(1, 5)));
     options_.sim.substrate_below = params.number_or("substrate_below_um", 0.30, Limits::positive());
@@ -55,9 +55,9 @@ class FdtdTableBuilder final : public TableBuilder {
         {"dft_tol", "number", "1", "3e-4", "stop when the reflected DFTs change by less than this"},
         {"courant", "number", "1", "0.95", "time step as a fraction of the Courant limit"},
         {"smoothing", "bool", "-", "true", "subpixel smoothing of material interfaces"},
-        {"dispersion_correction", "bool", "-", "the crystal's (fdtd: map; default true)",
+        {"dispersion_correction", "bool", "-", "the crystal's (fdtd: map; default false)",
          "refit each material per run so the Yee grid's k_z is the exact one (NOTES.md 3a)"},
-        {"exact_fill", "bool", "-", "the crystal's (fdtd: map; default true)",
+        {"exact_fill", "bool", "-", "the crystal's (fdtd: map; default false)",
          "fill fractions of mixed cells from exact circle chords (false: 8 x 8 point sample)"},
         {"substrate_below_um", "number", "um", "0.30", "keratin between the last row and the bottom PML"},
         {"air_above_um", "number", "um", "0.30", "air between the surface and the top PML"},
