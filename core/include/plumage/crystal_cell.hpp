@@ -48,6 +48,7 @@ struct CrystalCell {
   // Defaults off: the plain scheme of the cached production tables (opt in per crystal).
   bool fdtd_dispersion_correction = false;
   bool fdtd_exact_fill = false;
+  double fdtd_resolution_nm = 0;  // production grid step of this crystal; 0: the builder's (10 nm)
   int fdtd_grazing_anchors = 2;  // anchors of the grazing continuation (Z polynomial in κ² of degree − 1)
 
   double rod_depth_nm(int row) const { return cortex_nm + 0.5 * rod_diameter_nm + row * a_z_nm; }

@@ -28,6 +28,7 @@ CrystalCell parse_crystal_cell(const ParamView& node) {
   if (auto f = node.child_if("fdtd")) {
     c.fdtd_dispersion_correction = f->boolean_or("dispersion_correction", false);
     c.fdtd_exact_fill = f->boolean_or("exact_fill", false);
+    c.fdtd_resolution_nm = f->number_or("resolution_nm", 0.0, Limits::non_negative());
     c.fdtd_grazing_anchors = static_cast<int>(f->integer_or("grazing_anchors", 2, Limits::closed(1, 5)));
   }
   if (auto m = node.child_if("materials")) {

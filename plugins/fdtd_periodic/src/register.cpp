@@ -21,7 +21,9 @@ class FdtdTableBuilder final : public TableBuilder {
     static constexpr std::string_view kFidelity[] = {"preview", "production"};
     fidelity_ = params.choice_or("fidelity", kFidelity, "production");
     const bool preview = fidelity_ == "preview";
-    resolution_nm_ = params.number_or("resolution_nm", preview ? 15.0 : 10.0, Limits::positive());
+    // Unset: 15 nm (preview); production: the crystal's `fdtd: {resolution_nm}` or 10 nm.
+    if (params.has("resolution_nm")) resolution_nm_ = params.number_or("resolution_nm", 10.0, Limits::positive());
+    else if (preview) resolution_nm_ = 15.0;
     options_.k_step_per_um = params.number_or("k_step_per_um", preview ? 1.0 : 0.5, Limits::non_negative());
     options_.threads = static_cast<int>(params.integer_or("threads", 2, Limits::closed(1, 64)));
     options_.sim.pml_cells = static_cast<int>(params.integer_or("pml_cells", 24, Limits::closed(4, 200)));
@@ -43,7 +45,8 @@ class FdtdTableBuilder final : public TableBuilder {
     return {
         {"fidelity", "text", "-", "production",
          "preview (15 nm grid, k step 1/um) or production (10 nm, 0.5/um)"},
-        {"resolution_nm", "number", "nm", "by fidelity", "target grid step; cells per period = round(a_x/step)"},
+        {"resolution_nm", "number", "nm", "by fidelity",
+         "target grid step; cells per period = round(a_x/step) (preview 15; production: the crystal's fdtd: {resolution_nm} or 10)"},
         {"k_step_per_um", "number", "1/um", "by fidelity",
          "Bloch-k grid step of the broadband runs; 0 = one run per table entry with exact eps(lambda)"},
         {"threads", "integer", "1", "2", "worker threads (independent runs)"},
@@ -67,7 +70,8 @@ class FdtdTableBuilder final : public TableBuilder {
 
   ReflectionTable build(const CrystalCell& cell, const TableGrid& grid, Progress progress) const override {
     fdtd_table::Options o = options_;
-    o.nx = std::max(4, static_cast<int>(std::lround(cell.a_x_nm / resolution_nm_)));
+    const double step_nm = resolution_nm_.value_or(cell.fdtd_resolution_nm > 0 ? cell.fdtd_resolution_nm : 10.0);
+    o.nx = std::max(4, static_cast<int>(std::lround(cell.a_x_nm / step_nm)));
     o.sim.dispersion_correction = dispersion_correction_.value_or(cell.fdtd_dispersion_correction);
     o.sim.exact_fill = exact_fill_.value_or(cell.fdtd_exact_fill);
     o.grazing_anchors = grazing_anchors_.value_or(cell.fdtd_grazing_anchors);
@@ -95,7 +99,7 @@ class FdtdTableBuilder final : public TableBuilder {
 
  private:
   std::string fidelity_;
-  double resolution_nm_ = 10.0;
+  std::optional<double> resolution_nm_;
   fdtd_table::Options options_;
   std::optional<bool> dispersion_correction_, exact_fill_;
   std::optional<int> grazing_anchors_;
