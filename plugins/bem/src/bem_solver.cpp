@@ -96,9 +96,15 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
     else if (near_field) near_field->apply(in, out);
     else out = in;
   };
+  Eigen::MatrixXcd AX(options.warm_start ? B.rows() : 0, options.warm_start ? B.cols() : 0);
   for (Eigen::Index c = 0; c < B.cols(); ++c) {
-    // warm start: columns are (azimuth, polarisation) pairs, 2 per azimuth
-    Eigen::VectorXcd x = options.warm_start && c >= 2 ? Eigen::VectorXcd(X.col(c - 2)) : Eigen::VectorXcd::Zero(B.rows());
+    // warm start: the combination of all earlier solutions that minimises the residual,
+    // x0 = X_c y with y = argmin ‖b − (A X_c) y‖ (A X_c kept, one extra mat-vec per column)
+    Eigen::VectorXcd x = Eigen::VectorXcd::Zero(B.rows());
+    if (options.warm_start && c >= 1) {
+      const Eigen::VectorXcd y = AX.leftCols(c).colPivHouseholderQr().solve(B.col(c));
+      x = X.leftCols(c) * y;
+    }
     const GmresResult r = gmres(A, M, B.col(c), x, options.gmres_tolerance, options.gmres_restart,
                                    options.gmres_max_iterations);
     if (!r.converged) {
@@ -106,6 +112,11 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
                   " after " + std::to_string(r.iterations) + " iterations)");
     }
     if (iterations) iterations->push_back(r.iterations);
+    if (options.warm_start && c + 1 < B.cols()) {
+      Eigen::VectorXcd ax;
+      A(x, ax);
+      AX.col(c) = ax;
+    }
     X.col(c) = x;
   }
   return X;

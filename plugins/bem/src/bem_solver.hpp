@@ -52,8 +52,8 @@ struct BemOptions {
   int preconditioner_group = 16;
   QuadratureOptions quadrature;
   HMatrixOptions hmatrix;
-  // Right-hand sides after the first start GMRES from the solution of the previous azimuth with the
-  // same polarisation (method gmres/hmatrix).
+  // Right-hand sides after the first start GMRES from the residual-minimising combination of all
+  // earlier solutions (method gmres/hmatrix; NOTES.md §5).
   bool warm_start = true;
   // When set, one line of timings and sizes per (λ, θ_i) is appended to this file.
   std::string log_file;

@@ -36,7 +36,7 @@ void register_bem(plumage::Registrar& registrar) {
                   {"gmres_tolerance", "number", "1", "1e-8", "methods gmres/hmatrix: relative residual"},
                   {"gmres_restart", "integer", "1", "300", "methods gmres/hmatrix: Krylov vectors kept"},
                   {"warm_start", "bool", "-", "true",
-                   "methods gmres/hmatrix: start from the previous azimuth's solution (same polarisation)"},
+                   "methods gmres/hmatrix: start from the residual-minimising combination of the earlier solutions"},
                   {"log_file", "text", "-", "", "append one line of timings and sizes per (lambda, theta_i)"},
                   {"max_dense_unknowns", "integer", "1", "20000",
                    "refuse dense systems larger than this (memory: 16 N^2 bytes)"}}},
