@@ -123,7 +123,7 @@ TEST_CASE("bem hmatrix: GMRES with the hierarchical matrix reproduces dense LU (
     std::vector<int> its;
     const Eigen::MatrixXcd xa = a->solve(B, dense), xb = b->solve(B, fast, &its);
     const double diff = (xa - xb).norm() / xa.norm();
-    std::printf("  GMRES + H %s: N = %d, iterations %d %d %d %d (warm start from the previous azimuth), "
+    std::printf("  GMRES + H %s: N = %d, iterations %d %d %d %d (warm start: projection on the earlier solutions), "
                 "|x_H - x_LU| / |x_LU| = %.1e\n", name, n, its[0], its[1], its[2], its[3], diff);
     CHECK(diff <= 1e-5);
     CHECK(its[0] < 300);
