@@ -271,3 +271,50 @@ TEST_CASE("polarisation basis: unit, orthogonal, H = k x E, spec grazing rows in
             }
         }
 }
+
+TEST_CASE("dispersion correction removes the band-edge shift of a 9-period Bragg stack", "[tmm][dispersion]") {
+    // The layered equivalent of peacock-cyan (NOTES.md §3a): 9 melanin slabs of 59.4 nm (the
+    // rods' area per 160 nm period) in keratin, faces at arbitrary positions on a 10 nm grid.
+    // Reference: the Airy recursion with the same fitted ε. Without the correction the steep band
+    // edge is red-shifted by the Yee numerical dispersion (∝ h²).
+    const double h = 0.010, t = kPi * 0.055 * 0.055 / 0.16;
+    Cell c;
+    c.ax = h;
+    c.materials = {air_model(), keratin_fit().model, melanin_fit().model};
+    c.ambient = 0;
+    c.substrate = 1;
+    for (int j = 0; j < 9; ++j) {
+        const double zc = 0.155 + 0.16 * j;
+        c.slabs.push_back({zc - t / 2, zc + t / 2, 2});
+    }
+    c.structure_depth = c.slabs.back().z1;
+    const auto om = band_omegas(0.44, 0.56, 0.01);
+    double err[2] = {0, 0};
+    for (int corr = 0; corr < 2; ++corr) {
+        SimParams p;
+        p.nx = 1;
+        p.dispersion_correction = corr == 1;
+        const Spectrum s = run_spectrum(c, 0.0, 0.0, om, p);
+        for (const auto& f : s.freqs) {
+            if (!f.valid) continue;
+            tmmref::Stack st;
+            st.eps = {1.0};
+            double z = 0;
+            for (const auto& sl : c.slabs) {
+                st.eps.push_back(c.materials[1].eps(f.omega));
+                st.thick.push_back(sl.z0 - z);
+                st.eps.push_back(c.materials[2].eps(f.omega));
+                st.thick.push_back(sl.z1 - sl.z0);
+                z = sl.z1;
+            }
+            st.eps.push_back(c.materials[1].eps(f.omega));
+            const auto r = tmmref::airy(st, f.omega, 0.0);
+            err[corr] = std::max({err[corr], std::abs(f.R[0] - std::norm(r[0])), std::abs(f.R[1] - std::norm(r[1]))});
+        }
+    }
+    std::printf("Bragg stack (9 periods), h = 10 nm, normal incidence, 440-560 nm: max |dR| vs Airy = %.2e plain, "
+                "%.2e dispersion-corrected\n", err[0], err[1]);
+    CHECK(err[0] > 5e-3);        // the effect is real at this grid step
+    CHECK(err[1] < 2.5e-3);      // and the correction removes most of it
+    CHECK(err[1] < 0.3 * err[0]);
+}
