@@ -25,7 +25,7 @@ namespace plumage::bem {
 struct HMatrixOptions {
   double aca_tolerance = 1e-6;  // relative Frobenius error per admissible block
   double eta = 1.0;             // admissibility max(diam) ≤ η dist
-  int leaf_size = 12;           // segments per leaf cluster
+  int leaf_size = 24;           // segments per leaf cluster (NOTES.md §5: iterations vs near-field size)
   // Preconditioner pattern: near-field entries of segment pairs closer than factor·max(h);
   // 0 (default): the whole near field. Measured on a 0.3 µm hummingbird segment (20 ppw, 8 556
   // unknowns, tolerance 1e-6): whole near field 66 / 77 iterations, factor 10: 183 / 209, factor 4:

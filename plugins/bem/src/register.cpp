@@ -29,7 +29,7 @@ void register_bem(plumage::Registrar& registrar) {
                    "hierarchical-matrix mat-vec with ACA blocks, near-field LU preconditioner; large barbules)"},
                   {"aca_tolerance", "number", "1", "1e-6", "method hmatrix: relative error of each ACA block"},
                   {"eta", "number", "1", "1", "method hmatrix: admissibility max(diam) <= eta * distance"},
-                  {"leaf_size", "integer", "1", "12", "method hmatrix: segments per leaf cluster"},
+                  {"leaf_size", "integer", "1", "24", "method hmatrix: segments per leaf cluster (larger: bigger near field and preconditioner, fewer iterations)"},
                   {"preconditioner_factor", "number", "1", "0",
                    "method hmatrix: preconditioner = near-field entries of segments closer than factor * h "
                    "(0: the whole near field)"},
@@ -52,7 +52,7 @@ void register_bem(plumage::Registrar& registrar) {
                                        : BemOptions::Method::hmatrix;
         o.hmatrix.aca_tolerance = p.number_or("aca_tolerance", 1e-6, plumage::Limits::positive());
         o.hmatrix.eta = p.number_or("eta", 1.0, plumage::Limits::positive());
-        o.hmatrix.leaf_size = static_cast<int>(p.integer_or("leaf_size", 12, plumage::Limits::positive()));
+        o.hmatrix.leaf_size = static_cast<int>(p.integer_or("leaf_size", 24, plumage::Limits::positive()));
         o.hmatrix.preconditioner_factor = p.number_or("preconditioner_factor", 0.0, plumage::Limits::non_negative());
         o.gmres_tolerance = p.number_or("gmres_tolerance", 1e-8, plumage::Limits::positive());
         o.gmres_restart = static_cast<int>(p.integer_or("gmres_restart", 300, plumage::Limits::positive()));
