@@ -33,23 +33,6 @@ CrossSection coated_cylinder(double lambda, double ppw) {
   return layered_cylinder({250.0, 350.0}, {Material::keratin(), Material::melanin()}, lambda, ppw);
 }
 
-// Lossless body with three-region junctions (as in test_bem_solver.cpp).
-CrossSection junction_body() {
-  CrossSection cs;
-  auto rect = [](double x0, double z0, double x1, double z1, int nx, int nz) {
-    Polygon p;
-    for (int k = 0; k < nx; ++k) p.push_back({x0 + (x1 - x0) * k / nx, z0});
-    for (int k = 0; k < nz; ++k) p.push_back({x1, z0 + (z1 - z0) * k / nz});
-    for (int k = 0; k < nx; ++k) p.push_back({x1 - (x1 - x0) * k / nx, z1});
-    for (int k = 0; k < nz; ++k) p.push_back({x0, z1 - (z1 - z0) * k / nz});
-    return p;
-  };
-  cs.regions.push_back({rect(-200, -150, 0, 150, 8, 12), Material::constant(1.55), RegionRole::body});
-  cs.regions.push_back({rect(0, -150, 160, 150, 8, 12), Material::constant({1.9, 0.0}), RegionRole::body});
-  cs.regions.push_back({rect(-80, 150, 60, 230, 7, 4), Material::constant(1.3), RegionRole::film});
-  return cs;
-}
-
 double matvec_error(const CrossSection& cs, double lambda, double theta, double ppw, double tol) {
   BemOptions o;
   o.points_per_wavelength = ppw;

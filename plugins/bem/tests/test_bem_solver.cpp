@@ -90,25 +90,6 @@ EnergyBudget energy(const PlaneWaveResult& r, int pol, double theta, double phi_
   return b;
 }
 
-// A lossless body with junctions: a square split into two touching halves of different index,
-// plus a third region touching both (three-region points), in air.
-CrossSection junction_body() {
-  CrossSection cs;
-  cs.label = "junction body";
-  auto rect = [](double x0, double z0, double x1, double z1, int nx, int nz) {
-    Polygon p;
-    for (int k = 0; k < nx; ++k) p.push_back({x0 + (x1 - x0) * k / nx, z0});
-    for (int k = 0; k < nz; ++k) p.push_back({x1, z0 + (z1 - z0) * k / nz});
-    for (int k = 0; k < nx; ++k) p.push_back({x1 - (x1 - x0) * k / nx, z1});
-    for (int k = 0; k < nz; ++k) p.push_back({x0, z1 - (z1 - z0) * k / nz});
-    return p;
-  };
-  cs.regions.push_back({rect(-200, -150, 0, 150, 8, 12), Material::constant(1.55), RegionRole::body});
-  cs.regions.push_back({rect(0, -150, 160, 150, 8, 12), Material::constant({1.9, 0.0}), RegionRole::body});
-  cs.regions.push_back({rect(-80, 150, 60, 230, 7, 4), Material::constant(1.3), RegionRole::film});
-  return cs;
-}
-
 }  // namespace
 
 TEST_CASE("bem: cylinders vs exact series at the production mesh (keratin r = 250, melanin r = 100)") {
