@@ -42,32 +42,19 @@ struct FarKernels {
   Block2 k[3];
 };
 FarKernels far_kernels(const Segment& A, const Segment& B, cplx gamma, int points) {
-  static const cplx kI{0.0, 1.0};
   FarKernels out{};
-  const Rule& g = gauss_legendre(points);
-  const int n = static_cast<int>(g.x.size());
-  for (int a = 0; a < n; ++a) {
-    const Vec2 p = A.p0 + (g.x[a] * A.h) * A.t;
-    const double Na[2] = {1.0 - g.x[a], g.x[a]};
-    for (int b = 0; b < n; ++b) {
-      const Vec2 s = B.p0 + (g.x[b] * B.h) * B.t;
-      const double Nb[2] = {1.0 - g.x[b], g.x[b]};
-      const Vec2 d = p - s;
-      const double R = norm(d);
-      const H01 h = hankel1_01(gamma * R);
-      const cplx G = 0.25 * kI * h.h0;
-      const cplx dG = -0.25 * kI * gamma * h.h1;
-      const double w = g.w[a] * g.w[b];  // per unit length of both segments (see FarKernels)
-      for (int i = 0; i < 2; ++i) {
-        for (int j = 0; j < 2; ++j) {
-          const double wn = w * Na[i] * Nb[j];
-          out.k[0][i][j] += wn * G;
-          out.k[1][i][j] += (wn * d.x / R) * dG;
-          out.k[2][i][j] += (wn * d.z / R) * dG;
-        }
-      }
-    }
-  }
+  // w per unit length of both segments (see FarKernels).
+  for_each_far_node(A, B, gamma, points,
+                    [&](const double* Na, const double* Nb, const Vec2& d, double R, cplx G, cplx dG, double w) {
+                      for (int i = 0; i < 2; ++i) {
+                        for (int j = 0; j < 2; ++j) {
+                          const double wn = w * Na[i] * Nb[j];
+                          out.k[0][i][j] += wn * G;
+                          out.k[1][i][j] += (wn * d.x / R) * dG;
+                          out.k[2][i][j] += (wn * d.z / R) * dG;
+                        }
+                      }
+                    });
   return out;
 }
 

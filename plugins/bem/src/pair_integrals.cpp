@@ -44,31 +44,19 @@ PairIntegrals pair_integrals(const Segment& A, const Segment& B, cplx gamma, boo
   const double hmax = std::max(A.h, B.h);
   const double dist = same ? 0.0 : segment_distance(A, B);
   if (!same && dist > q.near_factor * hmax) {
-    const Rule& g = gauss_legendre(q.far_points);
-    const int n = static_cast<int>(g.x.size());
-    for (int a = 0; a < n; ++a) {
-      const Vec2 p = A.p0 + (g.x[a] * A.h) * A.t;
-      const double Na[2] = {1.0 - g.x[a], g.x[a]};
-      for (int b = 0; b < n; ++b) {
-        const Vec2 s = B.p0 + (g.x[b] * B.h) * B.t;
-        const double Nb[2] = {1.0 - g.x[b], g.x[b]};
-        const Vec2 d = p - s;
-        const double R = norm(d);
-        const H01 h = hankel1_01(gamma * R);
-        const cplx G = 0.25 * kI * h.h0;
-        const cplx dG = -0.25 * kI * gamma * h.h1;
-        const double w = g.w[a] * g.w[b] * A.h * B.h;
-        const double ra = dot(d, A.n) / R, rb = dot(d, B.n) / R;
-        for (int i = 0; i < 2; ++i) {
-          for (int j = 0; j < 2; ++j) {
-            const double wn = w * Na[i] * Nb[j];
-            out.I[i][j] += wn * G;
-            out.P[i][j] += (wn * ra) * dG;
-            out.Q[i][j] += (wn * rb) * dG;
-          }
-        }
-      }
-    }
+    for_each_far_node(A, B, gamma, q.far_points,
+                      [&](const double* Na, const double* Nb, const Vec2& d, double R, cplx G, cplx dG, double w_unit) {
+                        const double w = w_unit * A.h * B.h;
+                        const double ra = dot(d, A.n) / R, rb = dot(d, B.n) / R;
+                        for (int i = 0; i < 2; ++i) {
+                          for (int j = 0; j < 2; ++j) {
+                            const double wn = w * Na[i] * Nb[j];
+                            out.I[i][j] += wn * G;
+                            out.P[i][j] += (wn * ra) * dG;
+                            out.Q[i][j] += (wn * rb) * dG;
+                          }
+                        }
+                      });
     return out;
   }
 
