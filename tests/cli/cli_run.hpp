@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 namespace plumage::cli_test {
@@ -29,5 +30,20 @@ inline Result run_command(const std::string& command) {
 
 // `plumage <args>`.
 inline Result run(const std::string& args) { return run_command(std::string(PLUMAGE_EXE) + " " + args); }
+
+// The scratch folder of one CLI test suite under the system's temporary directory (created).
+inline std::filesystem::path scratch_dir(const std::string& suite) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / suite;
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// A fresh, not yet existing folder `name` inside a suite's scratch folder (earlier runs removed),
+// for commands that create their output folder themselves.
+inline std::filesystem::path fresh_scratch_path(const std::string& suite, const std::string& name) {
+  const std::filesystem::path dir = scratch_dir(suite) / name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
 
 }  // namespace plumage::cli_test

@@ -25,11 +25,7 @@ using namespace plumage::testing;
 
 namespace {
 
-fs::path scratch() {
-  fs::path dir = fs::temp_directory_path() / "plumage-test-brdf-cli";
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return plumage::cli_test::scratch_dir("plumage-test-brdf-cli"); }
 
 // 10 bins over 400–700 nm whose reflectance peaks at 520 nm (a green feather), grid 4.
 fs::path synthetic_material() {

@@ -27,8 +27,7 @@ using plumage::cli_test::run_command;
 namespace {
 
 fs::path scratch(const std::string& name) {
-  fs::path dir = fs::temp_directory_path() / "plumage-test-characterize" / name;
-  fs::remove_all(dir);
+  const fs::path dir = plumage::cli_test::fresh_scratch_path("plumage-test-characterize", name);
   fs::create_directories(dir);
   return dir;
 }

@@ -19,11 +19,7 @@ using plumage::cli_test::run_command;
 
 namespace {
 
-fs::path scratch() {
-  fs::path dir = fs::temp_directory_path() / "plumage-test-cli";
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return plumage::cli_test::scratch_dir("plumage-test-cli"); }
 
 std::string source(const std::string& rel) { return std::string(PLUMAGE_SOURCE_DIR) + "/" + rel; }
 

@@ -28,12 +28,7 @@ using plumage::cli_test::run_command;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  fs::path dir = fs::temp_directory_path() / "plumage-test-compare" / name;
-  fs::remove_all(dir);
-  fs::create_directories(dir.parent_path());
-  return dir;
-}
+fs::path scratch(const std::string& name) { return plumage::cli_test::fresh_scratch_path("plumage-test-compare", name); }
 
 std::string source(const std::string& rel) { return std::string(PLUMAGE_SOURCE_DIR) + "/" + rel; }
 

@@ -27,11 +27,7 @@ using plumage::cli_test::run_command;
 
 namespace {
 
-fs::path scratch() {
-  fs::path dir = fs::temp_directory_path() / "plumage-test-table-cli";
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return plumage::cli_test::scratch_dir("plumage-test-table-cli"); }
 
 // mallard-green with a single row of rods: the cheapest real crystal cell.
 fs::path tiny_crystal() {
