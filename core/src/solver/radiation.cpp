@@ -241,14 +241,6 @@ Radiator::~Radiator() {
   if (plan_) spare_plan = std::move(plan_);
 }
 
-void Radiator::radiate(std::span<const double> chi, const Eigen::MatrixXcd& amplitudes,
-                       std::span<const RadiationTargets> targets) {
-  const std::vector<double> chis[1] = {std::vector<double>(chi.begin(), chi.end())};
-  std::vector<Eigen::MatrixXcd> results;
-  radiate_all(chis, std::span<const Eigen::MatrixXcd>(&amplitudes, 1), targets, results);
-  for (std::size_t s = 0; s < targets.size(); ++s) *targets[s].result = std::move(results[s]);
-}
-
 void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<const Eigen::MatrixXcd> amplitudes,
                            std::span<const RadiationTargets> layout, std::vector<Eigen::MatrixXcd>& results) {
   Plan& p = *plan_;
@@ -370,15 +362,6 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
       }
     }
   }
-}
-
-void radiate(std::span<const Vec2> vertices, std::span<const double> segment_length,
-             std::span<const double> chi, double gamma0, double theta_i_rad,
-             const Eigen::MatrixXcd& amplitudes, std::span<const RadiationTargets> targets,
-             const ChunkingOptions& options) {
-  std::vector<std::span<const double>> phis;
-  for (const RadiationTargets& t : targets) phis.push_back(t.phi_o_rad);
-  Radiator(vertices, segment_length, gamma0, theta_i_rad, std::move(phis), options).radiate(chi, amplitudes, targets);
 }
 
 }  // namespace plumage::detail

@@ -40,19 +40,12 @@ struct RadiationTargets {
   Eigen::MatrixXcd* result = nullptr;  // resized to (directions × outputs) and overwritten
 };
 
-// `vertices`, `segment_length`, `chi` (incident phase per vertex) as in TentKernel;
-// `amplitudes` is (vertices − 2) × (6·groups). Chunked evaluation needs every target azimuth in
-// [−π/2, π/2]; otherwise the exact sum is used.
-void radiate(std::span<const Vec2> vertices, std::span<const double> segment_length,
-             std::span<const double> chi, double gamma0, double theta_i_rad,
-             const Eigen::MatrixXcd& amplitudes, std::span<const RadiationTargets> targets,
-             const ChunkingOptions& options);
-
-// radiate() for many incident azimuths of one (polyline, γ0, θ_i, target azimuths): what does
+// The far field of many incident azimuths of one (polyline, γ0, θ_i, target azimuths): what does
 // not depend on the incident phase χ — the chunks, the sampling grid, the interpolation stencils,
 // the chunk phases e^{−iγ0 ρ̂_j·r_c} at the targets and the outgoing kernel phases
-// (OutgoingPhases) — is set up once; radiate() then costs one complex product per kernel entry
-// instead of a sincos. Same results as the free function to rounding.
+// (OutgoingPhases) — is set up once; radiate_all() then costs one complex product per kernel entry
+// instead of a sincos. Chunked evaluation needs every target azimuth in [−π/2, π/2]; otherwise
+// the exact sum is used.
 class Radiator {
  public:
   Radiator(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
@@ -62,11 +55,9 @@ class Radiator {
   Radiator(const Radiator&) = delete;
   Radiator& operator=(const Radiator&) = delete;
 
-  // targets[s].phi_o_rad must be the azimuths given to the constructor as set s.
-  void radiate(std::span<const double> chi, const Eigen::MatrixXcd& amplitudes,
-               std::span<const RadiationTargets> targets);
-  // Every incident azimuth a at once: chi[a], amplitudes[a]; `layout` as `targets` above (its
-  // `result` pointers unused); results[a · layout.size() + s] receives set s of azimuth a. The
+  // Every incident azimuth a at once: chi[a], amplitudes[a] ((vertices − 2) × (6·groups));
+  // layout[s].phi_o_rad must be the azimuths given to the constructor as set s (its `result`
+  // pointers unused); results[a · layout.size() + s] receives set s of azimuth a. The
   // chunks' interpolation to the targets runs over all azimuths together (one stencil and chunk
   // phase per direction for all of them).
   void radiate_all(std::span<const std::vector<double>> chi, std::span<const Eigen::MatrixXcd> amplitudes,
