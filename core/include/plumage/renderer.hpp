@@ -1,0 +1,45 @@
+// Extension point: renderers of a Scene (issue 8). Implementation: "pathtracer"
+// (plugins/pathtracer: Embree 3, hero-wavelength spectral path tracing).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string_view>
+#include <vector>
+
+#include "plumage/image.hpp"
+#include "plumage/plugin.hpp"
+#include "plumage/scene.hpp"
+
+namespace plumage {
+
+struct RenderStats {
+  double seconds = 0.0;              // wall time of render()
+  std::uint64_t camera_paths = 0;    // width × height × spp
+  std::uint64_t rays = 0;            // every ray traced (camera, bounce, shadow)
+  double mean_lod_fraction = 0.0;    // share of feather shading points that used the mean BRDF
+};
+
+struct RenderResult {
+  // Linear sRGB radiance; a white Lambertian surface under a unit-irradiance D65 distant light
+  // at normal incidence gives (1/π)·(1, 1, 1) up to the sRGB white point rounding.
+  LinearImage rgb;
+  // settings.spectral_bins > 0: radiance per bin, [y][x][bin], equal bins over
+  // [lambda_min_nm, lambda_max_nm]; else empty.
+  std::vector<float> spectral;
+  RenderStats stats;
+};
+
+class Renderer : public PluginObject {
+ public:
+  static constexpr std::string_view plugin_kind = "renderer";
+
+  // (work done, total work, message); may be empty. Called from one thread at a time.
+  using Progress = std::function<void(std::size_t done, std::size_t total, std::string_view what)>;
+
+  // Deterministic: the same scene, settings and seed give the same image for any thread count.
+  virtual RenderResult render(const Scene& scene, const RenderSettings& settings,
+                              Progress progress) const = 0;
+};
+
+}  // namespace plumage
