@@ -227,7 +227,6 @@ void add_bench_command(CLI::App& app, AppContext& context) {
   bench->require_subcommand(1);
   add_bench_geometry_command(*bench, context);
   add_bench_fdtd_command(*bench, context);
-  void add_bench_bem_command(CLI::App&, AppContext&);  // bench_bem.cpp (issue 6)
   add_bench_bem_command(*bench, context);
 
   auto ml = std::make_shared<MultilayerBench>();

@@ -15,8 +15,15 @@ void add_bench_command(CLI::App& app, AppContext& context);
 void add_simulate_command(CLI::App& app, AppContext& context);
 void add_geometry_command(CLI::App& app, AppContext& context);
 void add_table_command(CLI::App& app, AppContext& context);  // cmd_table.cpp
+void add_compare_command(CLI::App& app, AppContext& context);       // cmd_compare.cpp
+void add_characterize_command(CLI::App& app, AppContext& context);  // cmd_characterize.cpp
+void add_merge_command(CLI::App& app, AppContext& context);         // cmd_merge.cpp
+void add_brdf_command(CLI::App& app, AppContext& context);          // cmd_brdf.cpp
+void add_render_command(CLI::App& app, AppContext& context);        // cmd_render.cpp (issue 8)
 // `bench geometry` (bench_geometry.cpp), added under the `bench` subcommand.
 void add_bench_geometry_command(CLI::App& bench, AppContext& context);
 void add_bench_fdtd_command(CLI::App& bench, AppContext& context);  // bench_fdtd.cpp
+void add_bench_bem_command(CLI::App& bench, AppContext& context);     // bench_bem.cpp
+void add_bench_render_command(CLI::App& bench, AppContext& context);  // bench_render.cpp (issue 8)
 
 }  // namespace plumage::cli

@@ -6,13 +6,6 @@
 #include "plumage/error.hpp"
 #include "plumage/version.hpp"
 
-namespace plumage::cli {
-void add_compare_command(CLI::App& app, AppContext& context);  // cmd_compare.cpp
-void add_characterize_command(CLI::App& app, AppContext& context);  // cmd_characterize.cpp
-void add_merge_command(CLI::App& app, AppContext& context);         // cmd_merge.cpp
-void add_brdf_command(CLI::App& app, AppContext& context);          // cmd_brdf.cpp
-}
-
 int main(int argc, char** argv) {
   using namespace plumage::cli;
   AppContext context;
