@@ -1,0 +1,67 @@
+// One camera path of the hero-wavelength spectral path tracer (Wilkie et al. 2014): four
+// wavelengths per path, the path sampled with the hero's (λ_0) BSDF, the others weighted by the
+// balance heuristic over the four wavelengths' path pdfs (one-sample MIS over which wavelength is
+// the hero); next-event estimation for every light, combined with BSDF sampling by the power
+// heuristic for area and environment lights; Russian roulette after a few vertices.
+//
+// Materials are switched on SceneMaterial::Kind (no virtual call per sample). The FeatherBsdf's
+// Incident is looked up once per hit and wavelength, keyed by the direction toward the viewer:
+// the mean BRDF's reciprocity (paper §5.2; tests/test_pathtracer_reciprocity) lets eval/pdf/sample
+// use ω_view as "ω_i" and the light direction as "ω_o" (see NOTES.md §Reciprocity).
+#pragma once
+
+#include <cstdint>
+
+#include "embree_scene.hpp"
+#include "plumage/random.hpp"
+#include "plumage/scene.hpp"
+#include "spectral_tables.hpp"
+
+namespace plumage::pathtracer {
+
+struct PathCounters {
+  std::uint64_t rays = 0;
+  std::uint64_t feather_points = 0, feather_mean = 0;
+};
+
+// The random numbers of one camera sample: a counter-based stream keyed by (seed, pixel, sample),
+// so every path is reproducible whatever thread traces it.
+class PathSampler {
+ public:
+  PathSampler(std::uint64_t seed, std::uint64_t pixel, std::uint64_t sample)
+      : stream_(splitmix64(seed) ^ splitmix64(pixel * 0x9e3779b97f4a7c15ULL + 0x2545f4914f6cdd1dULL) ^
+                splitmix64(splitmix64(sample + 0x632be59bd9b4e019ULL))) {}
+  double next() { return stream_.uniform(); }
+
+ private:
+  RandomStream stream_;
+};
+
+class Integrator {
+ public:
+  Integrator(const Scene& scene, const RenderSettings& settings, const EmbreeScene& embree,
+             const SpectralTables& tables);
+
+  // Radiance arriving along −dir at the camera from the ray (origin, dir), at `lambda` (λ_0 the
+  // hero). `spread_rad`: the ray cone's spread angle per unit distance (pixel footprint, LOD).
+  Spectrum4 trace(V3 origin, V3 dir, double spread_rad, const Spectrum4& lambda, PathSampler& rng,
+                  PathCounters& counters) const;
+
+ private:
+  struct Vertex;
+  void shade_setup(Vertex& v, const Hit& hit, V3 dir, double footprint_mm, const Spectrum4& lambda,
+                   PathCounters& counters) const;
+  void eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf) const;
+  bool sample(const Vertex& v, PathSampler& rng, V3& wl, Spectrum4& fcos, Spectrum4& pdf, bool& specular,
+              bool& transmitted) const;
+  V3 offset_origin(V3 p, V3 ng, V3 toward) const;
+
+  const Scene& scene_;
+  const RenderSettings& settings_;
+  const EmbreeScene& embree_;
+  const SpectralTables& tables_;
+  double eps_ = 1e-5;  // ray-origin offset, mm
+  double env_pdf_ = 0.0;
+};
+
+}  // namespace plumage::pathtracer
