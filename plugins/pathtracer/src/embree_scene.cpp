@@ -97,6 +97,8 @@ Hit EmbreeScene::intersect(V3 o, V3 d, double tmax) const {
   h.t = rh.ray.tfar;
   h.geom = rh.hit.geomID;
   h.prim = rh.hit.primID;
+  h.u = rh.hit.u;
+  h.v = rh.hit.v;
   h.ng = normalize(V3{rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z});
   return h;
 }

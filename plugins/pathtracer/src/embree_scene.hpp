@@ -17,6 +17,7 @@ struct Hit {
   bool found = false;
   double t = 0.0;
   unsigned geom = 0, prim = 0;
+  double u = 0.0, v = 0.0;  // barycentrics: hit = (1 − u − v)·p0 + u·p1 + v·p2
   V3 ng;  // geometric normal, unit, orientation of the triangle's winding
 };
 

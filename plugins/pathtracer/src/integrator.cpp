@@ -54,7 +54,9 @@ struct Integrator::Vertex {
   V3 p, ng, wv;  // position, unit geometric normal, unit direction toward the viewer
   Frame frame;   // feather: BRDF frame; diffuse: around the normal on the viewer's side
   const FeatherBsdf* bsdf = nullptr;
-  FeatherBsdf::Incident in[kWavelengths];
+  FeatherBsdf::Incident in[kWavelengths];  // at (λ_j, ω_view): the sampling proposal
+  V3 wv_local;
+  Spectrum4 lambda{};
   bool instance = false;
   std::uint64_t k = 0;
   Spectrum4 albedo{};
@@ -86,6 +88,8 @@ void Integrator::shade_setup(Vertex& v, const Hit& hit, V3 d, double footprint_m
       v.frame = {cross(t, n), t, n};
       v.bsdf = mat.feather.get();
       const V3 wl = v.frame.to_local(v.wv);
+      v.wv_local = wl;
+      v.lambda = lambda;
       // Level of detail (DESIGN §7): the cone's width projected on the surface, against the
       // spacing of the barbules it would average over.
       bool mean = true;
@@ -120,10 +124,13 @@ void Integrator::shade_setup(Vertex& v, const Hit& hit, V3 d, double footprint_m
 void Integrator::eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf) const {
   switch (v.kind) {
     case SceneMaterial::Kind::feather: {
+      // f(λ_j, ω_i = light, ω_o = viewer)·|cos θ_i| (feather_bsdf.hpp): one Incident per λ at the
+      // light direction; the pdf is that of sample() below (the viewer-side lobe).
       const V3 l = v.frame.to_local(wl);
       const double c = std::abs(l.z);
       for (int j = 0; j < kWavelengths; ++j) {
-        const double f = v.instance ? v.bsdf->eval(v.in[j], dir(l), v.k) : v.bsdf->eval(v.in[j], dir(l));
+        const FeatherBsdf::Incident in = v.bsdf->incident(v.lambda[j], dir(l));
+        const double f = v.instance ? v.bsdf->eval(in, dir(v.wv_local), v.k) : v.bsdf->eval(in, dir(v.wv_local));
         fcos[j] = f * c;
         pdf[j] = v.bsdf->pdf(v.in[j], dir(l));
       }
@@ -151,18 +158,20 @@ bool Integrator::sample(const Vertex& v, PathSampler& rng, V3& wl, Spectrum4& fc
   const double uc = rng.next(), u1 = rng.next(), u2 = rng.next();
   switch (v.kind) {
     case SceneMaterial::Kind::feather: {
-      const BsdfSample s = v.instance ? v.bsdf->sample(v.in[0], uc, u1, u2, v.k) : v.bsdf->sample(v.in[0], uc, u1, u2);
+      // Proposal: the lobe of the viewer direction taken as ω_i (the BRDF is not reciprocal,
+      // docs/validation.md "BSDF", but the lobe seen from the viewer is its closest cheap
+      // approximation); the value is the true f with ω_i = the sampled light-side direction.
+      const BsdfSample s = v.bsdf->sample(v.in[0], uc, u1, u2);
       if (!(s.pdf > 0.0)) return false;
       const V3 l{s.wo.x, s.wo.y, s.wo.z};
       wl = normalize(v.frame.to_world(l));
       transmitted = s.transmitted;
       const double c = std::abs(l.z);
-      fcos[0] = s.f * c;
-      pdf[0] = s.pdf;
-      for (int j = 1; j < kWavelengths; ++j) {
-        const double f = v.instance ? v.bsdf->eval(v.in[j], s.wo, v.k) : v.bsdf->eval(v.in[j], s.wo);
+      for (int j = 0; j < kWavelengths; ++j) {
+        const FeatherBsdf::Incident in = v.bsdf->incident(v.lambda[j], s.wo);
+        const double f = v.instance ? v.bsdf->eval(in, dir(v.wv_local), v.k) : v.bsdf->eval(in, dir(v.wv_local));
         fcos[j] = f * c;
-        pdf[j] = v.bsdf->pdf(v.in[j], s.wo);
+        pdf[j] = j == 0 ? s.pdf : v.bsdf->pdf(v.in[j], s.wo);
       }
       return true;
     }
@@ -229,7 +238,6 @@ Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lam
       }
       break;
     }
-    const V3 p = origin + hit.t * d;
     cone_width += spread * hit.t;
     if (hit.geom >= n_meshes) {  // an area light
       const AreaLight& a = scene_.area_lights[hit.geom - n_meshes];
@@ -251,14 +259,18 @@ Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lam
     }
 
     Vertex vx;
-    vx.p = p;
     {
+      // The hit point from the barycentrics (on the triangle to float precision of the scene's
+      // coordinates), not origin + t·dir, whose error grows with the distance travelled (a far
+      // camera would otherwise put it below the surface and shadow rays would self-intersect).
       const SceneMesh& mesh = scene_.meshes[hit.geom];
       const auto& tri = mesh.triangles[hit.prim];
       const V3 p0 = to_v3(mesh.positions[tri[0]]), p1 = to_v3(mesh.positions[tri[1]]),
                p2 = to_v3(mesh.positions[tri[2]]);
       vx.ng = normalize(cross(p1 - p0, p2 - p0));
+      vx.p = (1.0 - hit.u - hit.v) * p0 + hit.u * p1 + hit.v * p2;
     }
+    const V3 p = vx.p;
     shade_setup(vx, hit, d, cone_width, lambda, counters);
     const double rmean = mean4(r);
 

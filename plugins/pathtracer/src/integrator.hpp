@@ -4,10 +4,13 @@
 // the hero); next-event estimation for every light, combined with BSDF sampling by the power
 // heuristic for area and environment lights; Russian roulette after a few vertices.
 //
-// Materials are switched on SceneMaterial::Kind (no virtual call per sample). The FeatherBsdf's
-// Incident is looked up once per hit and wavelength, keyed by the direction toward the viewer:
-// the mean BRDF's reciprocity (paper §5.2; tests/test_pathtracer_reciprocity) lets eval/pdf/sample
-// use ω_view as "ω_i" and the light direction as "ω_o" (see NOTES.md §Reciprocity).
+// Materials are switched on SceneMaterial::Kind (no virtual call per sample). FeatherBsdf is
+// evaluated the physical way round, ω_i toward the light and ω_o toward the viewer
+// (feather_bsdf.hpp): the fitted mean BRDF is not reciprocal (docs/validation.md "BSDF"), so the
+// common shortcut of a renderer (one lookup at the viewer direction used as "ω_i", as Mitsuba's
+// BSDF interface does) would render a different material. Per hit: one Incident per λ at the
+// viewer direction (the sampling proposal and its pdf), one per λ per light sample and per
+// sampled direction (the values); see NOTES.md.
 #pragma once
 
 #include <cstdint>
