@@ -21,6 +21,7 @@
 
 #include "bench_record.hpp"
 #include "characterize_records.hpp"
+#include "characterize_run.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
 #include "grid_parse.hpp"
@@ -40,30 +41,8 @@ struct Options {
   double sigma = 0.04;
 };
 
-// Fidelity presets. production: the spec's grid (config simulation settings: 50 λ, 20 × 20,
-// 50 instances). preview: 10 instances, λ = 400, 430, …, 670 nm (10 bins of 30 nm), 10 × 10
-// incident nodes; same direction sampling and fits.
 CharacterizeSettings make_settings(const SpeciesConfig& config, const Options& o) {
-  CharacterizeSettings s;
-  s.label = config.species + "/" + config.variant;
-  s.config_hash = config.content_hash;
-  s.variant = config.variant;
-  s.fidelity = o.fidelity;
-  const auto& sim = config.simulation;
-  s.pattern_samples = sim.pattern_samples;
-  s.projected_samples = sim.projected_samples;
-  s.jitter_deg = sim.azimuth_jitter_deg;
-  s.sigma = o.sigma;
-  s.noise_functions = 512;
-  if (o.fidelity == "production") {
-    s.instances = sim.instances;
-    s.grid = sim.incident_grid;
-    s.lambda_nm = sim.wavelengths_nm;
-  } else {
-    s.instances = 10;
-    s.grid = 10;
-    for (int k = 0; k < 10; ++k) s.lambda_nm.push_back(400.0 + 30.0 * k);
-  }
+  CharacterizeSettings s = preset_settings(config, o.fidelity, o.sigma);
   if (o.instances > 0) s.instances = o.instances;
   if (o.grid > 0) s.grid = o.grid;
   if (o.noise_functions > 0) s.noise_functions = o.noise_functions;
@@ -79,11 +58,6 @@ CharacterizeSettings make_settings(const SpeciesConfig& config, const Options& o
   return s;
 }
 
-double jitter_rad(int n, int count, double jitter_deg) {
-  if (count < 2 || jitter_deg == 0.0) return 0.0;
-  return deg_to_rad(-jitter_deg + 2.0 * jitter_deg * n / (count - 1));
-}
-
 std::pair<int, int> parse_shard(const std::string& text) {
   int i = 0, n = 0;
   char slash = 0;
@@ -91,68 +65,6 @@ std::pair<int, int> parse_shard(const std::string& text) {
   if (!(in >> i >> slash >> n) || slash != '/' || !in.eof() || n < 1 || i < 1 || i > n)
     throw UsageError("--shard: expected i/N with 1 <= i <= N (e.g. 2/8), got '" + text + "'");
   return {i - 1, n};
-}
-
-struct DiagnosticUnit {
-  std::uint32_t w, a, b;
-  std::vector<double> phi_o, u, fit;
-  double rel_l2 = 0;
-};
-
-// One group: far fields of every instance for all G azimuths, then the G fits.
-GroupRecord run_group(const SpeciesConfig& config, const CharacterizeSettings& s,
-                      const std::vector<std::shared_ptr<const ScatteringSolver::Prepared>>& prepared,
-                      std::size_t g, std::vector<DiagnosticUnit>* diagnostics) {
-  GroupRecord rec;
-  rec.w = static_cast<std::uint32_t>(g / static_cast<std::size_t>(s.grid));
-  rec.a = static_cast<std::uint32_t>(g % static_cast<std::size_t>(s.grid)) + 1;
-  const double lambda = s.lambda_nm[rec.w];
-  const double theta = std::acos(static_cast<double>(rec.a) / s.grid);
-  std::vector<double> phi_i(static_cast<std::size_t>(s.grid));
-  for (int b = 1; b <= s.grid; ++b) phi_i[b - 1] = std::acos(static_cast<double>(b) / s.grid);
-  const DirectionSet pattern = pattern_directions(s.pattern_samples);
-  const DirectionSet projected = projected_directions(theta, s.projected_samples);
-  std::vector<double> phi_o = pattern.phi_o_rad;
-  phi_o.insert(phi_o.end(), projected.phi_o_rad.begin(), projected.phi_o_rad.end());
-
-  // per_b[b][n]: far field of instance n at azimuth b.
-  std::vector<std::vector<FarField>> per_b(phi_i.size(), std::vector<FarField>(static_cast<std::size_t>(s.instances)));
-  tbb::parallel_for(0, s.instances, [&](int n) {
-    std::vector<double> phis = phi_i;
-    const double d = jitter_rad(n, s.instances, s.jitter_deg);
-    for (double& p : phis) p += d;
-    auto fields = config.solver->solve(*prepared[n], lambda, theta, phis, phi_o);
-    for (std::size_t b = 0; b < fields.size(); ++b) per_b[b][n] = std::move(fields[b]);
-  });
-  rec.units.resize(phi_i.size());
-  std::vector<UnitFit> fits(phi_i.size());
-  const bool reference = rec.w == 0 && rec.a == static_cast<std::uint32_t>(s.grid);
-  tbb::parallel_for(std::size_t{0}, phi_i.size(), [&](std::size_t b) {
-    UnitInput in;
-    in.lambda_nm = lambda;
-    in.theta_i_rad = theta;
-    in.phi_i_rad = phi_i[b];
-    in.sigma = s.sigma;
-    in.pattern_count = pattern.phi_o_rad.size();
-    in.instances = per_b[b];
-    in.want_autocorrelation = reference && b + 1 == phi_i.size();
-    fits[b] = fit_unit(in);
-  });
-  for (std::size_t b = 0; b < fits.size(); ++b) {
-    rec.units[b] = {fits[b].node, fits[b].rel_l2_eff, fits[b].rel_l2_sta, fits[b].energy};
-    if (!fits[b].autocorrelation.empty()) rec.autocorrelation = fits[b].autocorrelation;
-  }
-  if (diagnostics) {
-    for (auto& d : *diagnostics) {
-      if (d.w == rec.w && d.a == rec.a) {
-        d.phi_o = pattern.phi_o_rad;
-        d.u = fits[d.b - 1].mean_pattern;
-        d.fit = fits[d.b - 1].fit_pattern;
-        d.rel_l2 = fits[d.b - 1].rel_l2_eff;
-      }
-    }
-  }
-  return rec;
 }
 
 std::vector<DiagnosticUnit> diagnostic_units(const CharacterizeSettings& s) {

@@ -30,6 +30,7 @@ int main(int argc, char** argv) {
   add_characterize_command(app, context);
   add_brdf_command(app, context);
   add_merge_command(app, context);
+  add_render_command(app, context);
 
   try {
     app.parse(argc, argv);

@@ -110,11 +110,13 @@ void add_quad_strip(SceneMesh& m, const std::vector<V3>& centre, const std::vect
   }
 }
 
-void build_rachis(const Vane& vane, SceneMesh& m) {
+// A tapered tube; barb-level feathers (bird-scale scenes) get a coarse one.
+void build_rachis(const Vane& vane, SceneMesh& m, bool coarse) {
   const FeatherShape& f = vane.f;
-  constexpr int kSides = 6;
+  const int kSides = coarse ? 4 : 6;
   const double y_start = -f.calamus_mm, y_end = f.length_mm;
-  const int rings = std::max(4, static_cast<int>(std::ceil((y_end - y_start) / std::max(0.5, f.length_mm / 40.0)))) + 1;
+  const double step = coarse ? f.length_mm / 8.0 : std::max(0.5, f.length_mm / 40.0);
+  const int rings = std::max(4, static_cast<int>(std::ceil((y_end - y_start) / step))) + 1;
   const auto base = static_cast<std::uint32_t>(m.positions.size());
   for (int r = 0; r < rings; ++r) {
     const double y = y_start + (y_end - y_start) * r / (rings - 1);
@@ -238,7 +240,7 @@ FeatherGeometry build_feather(const FeatherShape& f, FeatherDetail detail, std::
   g.shaft.name = "shaft";
   g.vane.name = "vane";
   g.vane.barbule_spacing_mm = f.barbule_spacing_mm * placement.scale;
-  build_rachis(vane, g.shaft);
+  build_rachis(vane, g.shaft, detail == FeatherDetail::barb_level);
   const std::vector<Barb> barbs = make_barbs(vane, seed);
   g.barb_count = barbs.size();
 

@@ -1,0 +1,44 @@
+// The single-process core of `plumage characterize` as callable functions, shared by
+// cmd_characterize.cpp (which adds shards, MPI, diagnostics and records) and `plumage render`
+// (which characterises a missing scene material at preview fidelity in-process).
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "characterize_records.hpp"
+#include "plumage/scattering_solver.hpp"
+#include "plumage/species_config.hpp"
+
+namespace plumage::cli {
+
+// Fidelity presets. production: the config's simulation grid (50 λ, 20 × 20, 50 instances).
+// preview: 10 instances, λ = 400, 430, …, 670 nm (10 bins of 30 nm), 10 × 10 incident nodes;
+// same direction sampling and fits.
+CharacterizeSettings preset_settings(const SpeciesConfig& config, const std::string& fidelity, double sigma = 0.04);
+
+// A unit of `characterize --diagnostics` (pattern vs fit of one node).
+struct DiagnosticUnit {
+  std::uint32_t w, a, b;
+  std::vector<double> phi_o, u, fit;
+  double rel_l2 = 0;
+};
+
+// One group: far fields of every instance for all G azimuths, then the G fits.
+GroupRecord run_group(const SpeciesConfig& config, const CharacterizeSettings& s,
+                      const std::vector<std::shared_ptr<const ScatteringSolver::Prepared>>& prepared,
+                      std::size_t g, std::vector<DiagnosticUnit>* diagnostics);
+
+struct CharacterizeRun {
+  double wall_s = 0, cpu_s = 0;
+  std::size_t groups_computed = 0;
+};
+// Every group in one process (resuming from `<out>.journal` if one of the same settings exists),
+// then the material, written atomically to `out`; the journal is removed on success. Progress on
+// stderr unless quiet.
+CharacterizeRun characterize_to_file(const SpeciesConfig& config, const CharacterizeSettings& s,
+                                     const std::filesystem::path& out, bool quiet);
+
+}  // namespace plumage::cli
