@@ -1,5 +1,5 @@
 # plumage: the two-command setup.
-#   make demo   install missing packages, build, run the main job on the default scene
+#   make demo   install missing packages, build, render the default scene (build/demo/demo.png)
 #   make test   install missing packages, build, run the default test suite (ctest)
 # Also: make build, make validate (slow validations, ctest label `validation`), make bench.
 
@@ -23,16 +23,14 @@ configure: deps
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-# The main job on the embedded default: the far-field reflection pattern of rock-dove barbules
-# (geometry -> local multilayer reflection -> Eq. 2 currents -> far field, 10 instances, 21
-# wavelengths, paper Fig. 7 style), and the reflectance spectra of every species' mean stack.
+# The main job: render the default scene (configs/scenes/demo.yaml, a rock-dove neck of 1200
+# barb-level feathers, paper Fig. 14). Its feather material (rock dove, forest) is taken from
+# $(MATERIALS) when cached there, else characterised at preview fidelity first (~30 s CPU, once).
+DEMO_SCENE ?= configs/scenes/demo.yaml
+MATERIALS ?= $(BUILD)/materials
 demo: build
-	$(PLUMAGE) simulate configs/species/rockdove.yaml --lambda-nm 400:700:15 --instances 10 \
-	  --theta-deg 0 --phi-deg 0 --out $(DEMO_OUT)/rockdove.ffs --csv $(DEMO_OUT)/rockdove-pattern.csv \
-	  --pattern $(DEMO_OUT)/rockdove-pattern.png
-	$(PLUMAGE) spectra configs/species/*.yaml --lambda-nm 400:700:5 --theta-deg 0,30,60 \
-	  --csv $(DEMO_OUT)/spectra.csv --plot $(DEMO_OUT)/spectra.png
-	@echo "demo: wrote $(DEMO_OUT)/rockdove-pattern.png, $(DEMO_OUT)/spectra.png (and .csv, .ffs beside them)"
+	$(PLUMAGE) render $(DEMO_SCENE) --out $(DEMO_OUT) --materials $(MATERIALS)
+	@echo "demo: wrote $(DEMO_OUT)/demo.exr (linear radiance) and $(DEMO_OUT)/demo.png (preview)"
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE validation
