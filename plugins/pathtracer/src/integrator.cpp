@@ -104,7 +104,7 @@ void Integrator::shade_setup(Vertex& v, const Hit& hit, V3 d, double footprint_m
       v.k = mesh.barbule_id.empty() ? 0 : mesh.barbule_id[hit.prim];
       ++counters.feather_points;
       if (mean) ++counters.feather_mean;
-      for (int j = 0; j < kWavelengths; ++j) v.in[j] = v.bsdf->incident(lambda[j], dir(wl));
+      for (int j = 0; j < kWavelengths; ++j) v.in[j] = counters.cache.get(*v.bsdf, lambda[j], dir(wl));
       break;
     }
     case SceneMaterial::Kind::diffuse: {
@@ -121,7 +121,7 @@ void Integrator::shade_setup(Vertex& v, const Hit& hit, V3 d, double footprint_m
 
 // f_j·|cos θ_l| and the pdf of sample() (solid angle) at every wavelength, for the world
 // direction wl toward the light.
-void Integrator::eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf) const {
+void Integrator::eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf, IncidentCache& cache) const {
   switch (v.kind) {
     case SceneMaterial::Kind::feather: {
       // f(λ_j, ω_i = light, ω_o = viewer)·|cos θ_i| (feather_bsdf.hpp): one Incident per λ at the
@@ -129,7 +129,7 @@ void Integrator::eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf) c
       const V3 l = v.frame.to_local(wl);
       const double c = std::abs(l.z);
       for (int j = 0; j < kWavelengths; ++j) {
-        const FeatherBsdf::Incident in = v.bsdf->incident(v.lambda[j], dir(l));
+        const FeatherBsdf::Incident& in = cache.get(*v.bsdf, v.lambda[j], dir(l));
         const double f = v.instance ? v.bsdf->eval(in, dir(v.wv_local), v.k) : v.bsdf->eval(in, dir(v.wv_local));
         fcos[j] = f * c;
         pdf[j] = v.bsdf->pdf(v.in[j], dir(l));
@@ -152,7 +152,7 @@ void Integrator::eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf) c
 }
 
 bool Integrator::sample(const Vertex& v, PathSampler& rng, V3& wl, Spectrum4& fcos, Spectrum4& pdf, bool& specular,
-                        bool& transmitted) const {
+                        bool& transmitted, IncidentCache& cache) const {
   specular = false;
   transmitted = false;
   const double uc = rng.next(), u1 = rng.next(), u2 = rng.next();
@@ -168,7 +168,7 @@ bool Integrator::sample(const Vertex& v, PathSampler& rng, V3& wl, Spectrum4& fc
       transmitted = s.transmitted;
       const double c = std::abs(l.z);
       for (int j = 0; j < kWavelengths; ++j) {
-        const FeatherBsdf::Incident in = v.bsdf->incident(v.lambda[j], s.wo);
+        const FeatherBsdf::Incident& in = cache.get(*v.bsdf, v.lambda[j], s.wo);
         const double f = v.instance ? v.bsdf->eval(in, dir(v.wv_local), v.k) : v.bsdf->eval(in, dir(v.wv_local));
         fcos[j] = f * c;
         pdf[j] = j == 0 ? s.pdf : v.bsdf->pdf(v.in[j], s.wo);
@@ -278,7 +278,7 @@ Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lam
     if (vx.kind != SceneMaterial::Kind::dielectric) {
       Spectrum4 fcos, pdf;
       auto connect = [&](V3 wl, double dist, double light_pdf, double radiance_scale, bool delta) {
-        eval(vx, wl, fcos, pdf);
+        eval(vx, wl, fcos, pdf, counters.cache);
         if (fcos[0] == 0.0 && fcos[1] == 0.0 && fcos[2] == 0.0 && fcos[3] == 0.0) return;
         ++counters.rays;
         if (embree_.occluded(offset_origin(p, vx.ng, wl), wl, dist)) return;
@@ -327,7 +327,7 @@ Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lam
     V3 wl;
     Spectrum4 fcos, pdf;
     bool specular = false, transmitted = false;
-    if (!sample(vx, rng, wl, fcos, pdf, specular, transmitted)) break;
+    if (!sample(vx, rng, wl, fcos, pdf, specular, transmitted, counters.cache)) break;
     if (specular) {
       for (int j = 0; j < kWavelengths; ++j) beta[j] *= fcos[j];
     } else {

@@ -16,15 +16,18 @@
 #include <cstdint>
 
 #include "embree_scene.hpp"
+#include "incident_cache.hpp"
 #include "plumage/random.hpp"
 #include "plumage/scene.hpp"
 #include "spectral_tables.hpp"
 
 namespace plumage::pathtracer {
 
+// Per-tile state: counters and the Incident memo (one per tile, so no sharing between threads).
 struct PathCounters {
   std::uint64_t rays = 0;
   std::uint64_t feather_points = 0, feather_mean = 0;
+  IncidentCache cache;
 };
 
 // The random numbers of one camera sample: a counter-based stream keyed by (seed, pixel, sample),
@@ -54,9 +57,9 @@ class Integrator {
   struct Vertex;
   void shade_setup(Vertex& v, const Hit& hit, V3 dir, double footprint_mm, const Spectrum4& lambda,
                    PathCounters& counters) const;
-  void eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf) const;
+  void eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf, IncidentCache& cache) const;
   bool sample(const Vertex& v, PathSampler& rng, V3& wl, Spectrum4& fcos, Spectrum4& pdf, bool& specular,
-              bool& transmitted) const;
+              bool& transmitted, IncidentCache& cache) const;
   V3 offset_origin(V3 p, V3 ng, V3 toward) const;
 
   const Scene& scene_;
