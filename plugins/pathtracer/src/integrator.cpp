@@ -258,6 +258,11 @@ Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lam
       break;  // emitters do not scatter
     }
 
+    // Vertex `depth` is a surface; past max_depth the path ends (the ray that reached it was
+    // traced only for the emission it might have met, so the last vertex's BSDF sampling still
+    // takes part in MIS).
+    if (depth > settings_.max_depth) break;
+
     Vertex vx;
     {
       // The hit point from the barycentrics (on the triangle to float precision of the scene's
@@ -300,7 +305,9 @@ Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lam
         const double s = rng.next(), t = rng.next();
         const V3 u = to_v3(a.edge_u_mm), v = to_v3(a.edge_v_mm);
         const V3 y = to_v3(a.corner_mm) + s * u + t * v;
-        const V3 to = y - p;
+        // Measured from the offset origin the shadow ray will start at (the offset shortens the
+        // path by up to eps/cos, more than the stop-short margin below).
+        const V3 to = y - offset_origin(p, vx.ng, y - p);
         const double dist2 = dot(to, to);
         const V3 un = cross(u, v);
         const double area = length(un);
@@ -320,8 +327,6 @@ Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lam
         connect(wl, std::numeric_limits<double>::infinity(), env_pdf_, scene_.environment.radiance / env_pdf_, false);
       }
     }
-
-    if (depth >= settings_.max_depth) break;
 
     // Continue by BSDF sampling at the hero wavelength.
     V3 wl;
