@@ -136,3 +136,32 @@ TEST_CASE("pathtracer furnace: a feather-BSDF sphere is no brighter than the env
   CHECK(mean <= kEnv + 4.0 * se);
   CHECK(mean > 0.2 * kEnv);  // it does reflect
 }
+
+TEST_CASE("pathtracer furnace: a smooth dielectric sphere (ior 1.5) vanishes too", "[pathtracer]") {
+  // Fresnel reflection + refraction with the 1/η² radiance scaling conserve radiance along every
+  // path, so a closed dielectric body in a constant environment is invisible; paths trapped by
+  // total internal reflection in the faceted sphere longer than max_depth are the only loss.
+  SceneMaterial glass;
+  glass.name = "glass";
+  glass.kind = SceneMaterial::Kind::dielectric;
+  glass.ior = 1.5;
+  RenderSettings settings;
+  settings.samples_per_pixel = 32;
+  settings.max_depth = 32;
+  const RenderResult r = pathtracer::PathTracer().render(furnace(glass), settings, {});
+  double sum = 0, sum2 = 0, count = 0;
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      const double dx = x + 0.5 - 0.5 * kSize, dy = y + 0.5 - 0.5 * kSize;
+      if (dx * dx + dy * dy >= std::pow(0.8 * 0.34 * kSize, 2)) continue;
+      const RgbF p = r.rgb.at(x, y);
+      const double Y = srgb_luminance({p.r, p.g, p.b});
+      sum += Y;
+      sum2 += Y * Y;
+      count += 1;
+    }
+  }
+  const double mean = sum / count, se = std::sqrt(std::max(0.0, sum2 / count - mean * mean) / count);
+  std::printf("furnace dielectric: sphere luminance %.5f ± %.5f, environment %.5f\n", mean, se, kEnv);
+  CHECK(std::abs(mean - kEnv) <= 4.0 * se + 0.005 * kEnv);
+}
