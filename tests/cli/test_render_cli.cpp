@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "bsdf_fixtures.hpp"
+#include "plumage/config_document.hpp"
 #include "plumage/exr.hpp"
 #include "plumage/feather_material.hpp"
 #include "plumage/image.hpp"
@@ -31,8 +32,10 @@ fs::path write_scene(const std::string& name, const std::string& text) {
   return file;
 }
 
-// A green-reflecting synthetic material (as tests/cli/test_brdf_cli.cpp).
-fs::path synthetic_material() {
+// A green-reflecting synthetic material (as tests/cli/test_brdf_cli.cpp), optionally labelled as
+// a species material (label, config hash, fidelity) and written to `file`.
+fs::path synthetic_material(const std::string& label = "synthetic/green", const std::string& hash = "",
+                            const std::string& fidelity = "test", fs::path file = {}) {
   MaterialRecipe r;
   r.bins = 10;
   r.grid = 4;
@@ -40,12 +43,13 @@ fs::path synthetic_material() {
   r.m_eff = [](int, double, double) { return 0.2; };
   r.albedo = [](int w, double, double) { const double d = (400.0 + 30.0 * w - 520.0) / 60.0; return 0.1 + 0.6 * std::exp(-d * d); };
   FeatherMaterial m = make_material(r, [](const Lobe& l, double t) { return lobe_integral(l, t, 12, 3); });
-  m.label = "synthetic/green";
-  m.fidelity = "test";
+  m.label = label;
+  m.config_hash = hash;
+  m.fidelity = fidelity;
   m.bin_width_nm = 30.0;
   for (int w = 0; w < r.bins; ++w) m.lambda_nm[static_cast<std::size_t>(w)] = 400.0 + 30.0 * w;
   m.noise = ar1_pool(16, 128, 0.9, 42);
-  const fs::path file = plumage::cli_test::scratch_dir(kSuite) / "green.plm";
+  if (file.empty()) file = plumage::cli_test::scratch_dir(kSuite) / "green.plm";
   write_feather_material(file, m);
   return file;
 }
@@ -149,4 +153,30 @@ TEST_CASE("render: bad input exits 2 with file:line:column and writes nothing", 
   CHECK(r.status == 2);
   CHECK(r.output.find("plumage characterize") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
+}
+
+TEST_CASE("render: a species material is found in the cache by label, config hash and fidelity", "[cli][render]") {
+  const fs::path species = fs::path(PLUMAGE_SOURCE_DIR) / "configs" / "species" / "starling.yaml";
+  const std::string hash = ConfigDocument::load(species).content_hash();
+  const fs::path cache = plumage::cli_test::fresh_scratch_path(kSuite, "cache");
+  fs::create_directories(cache);
+  std::string text = kPlane;
+  text.replace(text.find("objects:"), std::string::npos,
+               "objects: [{type: feather, material: s, detail: barb_level, shape: {length_mm: 8, vane_width_mm: 4}}]\n");
+  text.replace(text.find("materials: {"), 12, "materials: {s: {type: feather, species: " + species.string() + ", variant: green}, ");
+  const fs::path scene = write_scene("cached.yaml", text);
+  const fs::path out = plumage::cli_test::fresh_scratch_path(kSuite, "cached");
+  // Another config hash or another fidelity is not a hit (and characterising is switched off).
+  synthetic_material("starling/green", "0000000000000000", "preview", cache / "starling-green-old.plm");
+  synthetic_material("starling/green", hash, "test", cache / "starling-green-test.plm");
+  Result r = run("render " + scene.string() + " --no-characterize --spp 1 --materials " + cache.string() + " --out " + out.string());
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK(r.output.find("no cached material for starling/green (preview)") != std::string::npos);
+  // The matching one, under any name starting with <species>-<variant>.
+  const fs::path good = synthetic_material("starling/green", hash, "preview", cache / "starling-green-mine.plm");
+  r = run("render " + scene.string() + " --no-characterize --spp 1 --materials " + cache.string() + " --out " + out.string());
+  CHECK(r.status == 0);
+  CHECK(r.output.find("material starling/green: " + good.string()) != std::string::npos);
+  CHECK(fs::exists(out / "plane.png"));
 }
