@@ -119,8 +119,8 @@ void Integrator::shade_setup(Vertex& v, const Hit& hit, V3 d, double footprint_m
   }
 }
 
-// f_j·|cos θ_l| and the pdf of sample() (solid angle) at every wavelength, for the world
-// direction wl toward the light.
+// f_j·|cos θ_l| at every wavelength and the hero's pdf of sample() (solid angle, pdf[0]; the
+// others are not needed by NEE and may be left unset), for the world direction wl to the light.
 void Integrator::eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf, IncidentCache& cache) const {
   switch (v.kind) {
     case SceneMaterial::Kind::feather: {
@@ -132,8 +132,9 @@ void Integrator::eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf, I
         const FeatherBsdf::Incident& in = cache.get(*v.bsdf, v.lambda[j], dir(l));
         const double f = v.instance ? v.bsdf->eval(in, dir(v.wv_local), v.k) : v.bsdf->eval(in, dir(v.wv_local));
         fcos[j] = f * c;
-        pdf[j] = v.bsdf->pdf(v.in[j], dir(l));
       }
+      // Only the hero's pdf enters the light/BSDF MIS weight (NEE does not change r).
+      pdf[0] = v.bsdf->pdf(v.in[0], dir(l));
       return;
     }
     case SceneMaterial::Kind::diffuse: {
