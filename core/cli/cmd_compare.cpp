@@ -347,6 +347,7 @@ struct Options {
   bool no_pictures = false;
   std::vector<std::string> only;  // run only these methods (the reference always runs)
   std::string reference;          // overrides the config's reference
+  std::vector<double> wavelengths;  // run only these of the config's wavelengths (nm)
 };
 
 struct MethodRun {
@@ -380,6 +381,18 @@ void run(AppContext& context, const Options& o) {
       }
     }
     c.methods = std::move(kept);
+  }
+  if (!o.wavelengths.empty()) {
+    // A subset of the config's wavelengths: full-wave solves of a paper-size segment take tens of
+    // minutes each, so long comparisons are run per wavelength (and merged, plugins/bem/tools).
+    for (double l : o.wavelengths) {
+      if (std::none_of(c.lambdas.begin(), c.lambdas.end(), [&](double x) { return std::abs(x - l) < 1e-9; })) {
+        throw UsageError("--wavelengths: " + o.config + " has no wavelength " + format_number(l) + " nm");
+      }
+    }
+    std::erase_if(c.lambdas, [&](double x) {
+      return std::none_of(o.wavelengths.begin(), o.wavelengths.end(), [&](double l) { return std::abs(x - l) < 1e-9; });
+    });
   }
   const fs::path out_dir = o.out.empty() ? fs::path(c.name + "-compare") : fs::path(o.out);
 
@@ -633,6 +646,8 @@ void add_compare_command(CLI::App& app, AppContext& context) {
   cmd->add_option("--only", o->only, "Run only these methods (comma-separated; the reference always runs)")
       ->delimiter(',');
   cmd->add_option("--reference", o->reference, "Compare against this method instead of the config's reference");
+  cmd->add_option("--wavelengths", o->wavelengths, "Run only these of the config's wavelengths (nm, comma-separated)")
+      ->delimiter(',');
   cmd->callback([&context, o] { run(context, *o); });
 }
 
