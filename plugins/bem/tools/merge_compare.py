@@ -84,7 +84,7 @@ def main():
     incidents = sorted({(c[0], c[1]) for c in cases}, key=lambda x: (x[0], -x[1]))
     lams = sorted({c[2] for c in cases})
     for (th, ph) in incidents:
-        fig, axes = plt.subplots(1, len(lams), figsize=(5.2 * len(lams), 3.8), squeeze=False)
+        fig, axes = plt.subplots(1, len(lams), figsize=(max(8.0, 5.2 * len(lams)), 4.2), squeeze=False)
         for ax, lam in zip(axes[0], lams):
             for m in order:
                 key = (m, th, ph, lam, "mean")
@@ -98,7 +98,7 @@ def main():
             ax.set_xlim(-90, 90)
         axes[0][0].set_ylabel("reflectance per rad (Eq. 10), unpolarised")
         axes[0][-1].legend(fontsize=7)
-        fig.suptitle(f"{args.title} theta_i = {th:g} deg, phi_i = {ph:g} deg")
+        fig.suptitle(f"{args.title} theta_i = {th:g} deg, phi_i = {ph:g} deg", fontsize=10)
         fig.tight_layout()
         tag = f"theta{th:g}_phi{ph:g}".replace("-", "m").replace(".", "p")
         fig.savefig(f"{args.out}-patterns-{tag}.png", dpi=110)
