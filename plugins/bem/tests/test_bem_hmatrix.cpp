@@ -226,8 +226,9 @@ TEST_CASE("bem hmatrix: hummingbird barbule segment, GMRES + H vs dense LU (beam
 TEST_CASE("bem quadrature: test/basis swap on the hummingbird's sub-nm edges (near-pair rule accuracy)") {
   // Both orders of a near pair are valid quadratures of the same integrals (I' = I^T, P' = -Q^T,
   // Q' = -P^T), so their difference bounds the near rule's error independently of the code's own
-  // earlier output. The generator leaves edges of ~0.25 nm beside 10 nm segments (NOTES.md §5);
-  // a uniform outer rule on the long segment cannot resolve a source 0.25 nm away.
+  // earlier output. This 0.3 um segment (narrower than the generator's valid range) has sub-nm
+  // edges, interfaces 0.2-1.8 nm apart along 10-30 nm segments, cusps, and overlapping platelets
+  // (NOTES.md §5): a uniform outer rule on the long segment cannot resolve a source ~1 nm away.
   const CrossSection cs = hummingbird_segment();
   const auto prep = prepare_geometry(cs);
   const double lambda = 550.0, ppw = 12.0, k0 = 2.0 * std::acos(-1.0) / lambda;
