@@ -1,5 +1,5 @@
-// The single-process core of `plumage characterize` (characterize_run.hpp), moved here from
-// cmd_characterize.cpp unchanged so that `plumage render` can characterise a material in-process.
+// The single-process core of `plumage characterize` (characterize_run.hpp), shared with
+// `plumage render`, which characterises a missing material in-process.
 #include "characterize_run.hpp"
 
 #include <tbb/parallel_for.h>
@@ -112,34 +112,23 @@ GroupRecord run_group(const SpeciesConfig& config, const CharacterizeSettings& s
   return rec;
 }
 
-CharacterizeRun characterize_to_file(const SpeciesConfig& config, const CharacterizeSettings& s,
-                                     const std::filesystem::path& out, bool quiet) {
-  if (!config.structure) throw UsageError(config.file.string() + ": no `structure:` section to characterise");
-  std::filesystem::path journal = out;
-  journal += ".journal";
-  std::set<std::size_t> done;
-  std::uintmax_t valid = 0;
-  if (std::filesystem::exists(journal)) {
-    const JournalContents j = read_journal(journal);
-    if (j.fingerprint == s.fingerprint()) {
-      for (const auto& r : j.records) done.insert(r.w * static_cast<std::size_t>(s.grid) + (r.a - 1));
-      valid = j.valid_bytes;
-    } else {
-      std::filesystem::remove(journal);  // a cache journal of other settings: start over
-    }
+JournalResume read_journal_resume(const std::filesystem::path& journal, const CharacterizeSettings& s) {
+  JournalResume resume;
+  if (!std::filesystem::exists(journal)) return resume;
+  const JournalContents j = read_journal(journal);
+  resume.fingerprint = j.fingerprint;
+  if (j.fingerprint != s.fingerprint()) {
+    resume.matches = false;
+    return resume;
   }
-  std::vector<std::size_t> todo;
-  for (std::size_t g = 0; g < s.group_count(); ++g)
-    if (!done.count(g)) todo.push_back(g);
-  if (!quiet) {
-    std::cerr << s.label << ": characterising at " << s.fidelity << " fidelity, " << s.lambda_nm.size() << " wavelengths x "
-              << s.grid << " x " << s.grid << " incident nodes, " << s.instances << " instances";
-    if (!done.empty()) std::cerr << ", resuming (" << done.size() << " groups in " << journal.string() << ")";
-    std::cerr << "\n";
-  }
-  CharacterizeRun run;
-  const auto wall0 = std::chrono::steady_clock::now();
-  const std::clock_t cpu0 = std::clock();
+  for (const auto& r : j.records) resume.done.insert(r.w * static_cast<std::size_t>(s.grid) + (r.a - 1));
+  resume.valid_bytes = j.valid_bytes;
+  return resume;
+}
+
+void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, const std::vector<std::size_t>& todo,
+                    const std::filesystem::path& journal, std::uintmax_t valid_bytes, bool quiet,
+                    std::vector<DiagnosticUnit>* diagnostics) {
   std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepared(static_cast<std::size_t>(s.instances));
   if (!todo.empty()) {
     tbb::parallel_for(0, s.instances, [&](int n) {
@@ -147,15 +136,38 @@ CharacterizeRun characterize_to_file(const SpeciesConfig& config, const Characte
       prepared[n] = config.solver->prepare(cs, config.reflection);
     });
   }
-  {
-    JournalWriter writer(journal, s, valid);
-    Progress progress("work units", todo.size() * static_cast<std::size_t>(s.grid), quiet);
-    std::size_t count = 0;
-    for (std::size_t g : todo) {
-      writer.append(run_group(config, s, prepared, g, nullptr));
-      progress.advance(++count * static_cast<std::size_t>(s.grid));
-    }
+  JournalWriter writer(journal, s, valid_bytes);
+  Progress progress("work units", todo.size() * static_cast<std::size_t>(s.grid), quiet);
+  std::size_t count = 0;
+  for (std::size_t g : todo) {
+    writer.append(run_group(config, s, prepared, g, diagnostics));
+    progress.advance(++count * static_cast<std::size_t>(s.grid));
   }
+}
+
+CharacterizeRun characterize_to_file(const SpeciesConfig& config, const CharacterizeSettings& s,
+                                     const std::filesystem::path& out, bool quiet) {
+  if (!config.structure) throw UsageError(config.file.string() + ": no `structure:` section to characterise");
+  std::filesystem::path journal = out;
+  journal += ".journal";
+  JournalResume resume = read_journal_resume(journal, s);
+  if (!resume.matches) {
+    std::filesystem::remove(journal);  // a cache journal of other settings: start over
+    resume = JournalResume{};
+  }
+  std::vector<std::size_t> todo;
+  for (std::size_t g = 0; g < s.group_count(); ++g)
+    if (!resume.done.count(g)) todo.push_back(g);
+  if (!quiet) {
+    std::cerr << s.label << ": characterising at " << s.fidelity << " fidelity, " << s.lambda_nm.size() << " wavelengths x "
+              << s.grid << " x " << s.grid << " incident nodes, " << s.instances << " instances";
+    if (!resume.done.empty()) std::cerr << ", resuming (" << resume.done.size() << " groups in " << journal.string() << ")";
+    std::cerr << "\n";
+  }
+  CharacterizeRun run;
+  const auto wall0 = std::chrono::steady_clock::now();
+  const std::clock_t cpu0 = std::clock();
+  compute_groups(config, s, todo, journal, resume.valid_bytes, quiet, nullptr);
   const JournalContents all = read_journal(journal);
   write_feather_material(out, assemble_material(s, all.records));
   std::filesystem::remove(journal);

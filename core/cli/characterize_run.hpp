@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,22 @@ struct DiagnosticUnit {
 GroupRecord run_group(const SpeciesConfig& config, const CharacterizeSettings& s,
                       const std::vector<std::shared_ptr<const ScatteringSolver::Prepared>>& prepared,
                       std::size_t g, std::vector<DiagnosticUnit>* diagnostics);
+
+// What a journal beside the output already holds: the groups done and its valid byte count.
+// `matches` is false (and nothing is done) when it was written with other settings.
+struct JournalResume {
+  std::set<std::size_t> done;
+  std::uintmax_t valid_bytes = 0;
+  bool matches = true;
+  std::string fingerprint;
+};
+JournalResume read_journal_resume(const std::filesystem::path& journal, const CharacterizeSettings& s);
+
+// Prepares every instance (in parallel, only if there is work) and appends the groups `todo`
+// to the journal in order, with progress on stderr unless quiet.
+void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, const std::vector<std::size_t>& todo,
+                    const std::filesystem::path& journal, std::uintmax_t valid_bytes, bool quiet,
+                    std::vector<DiagnosticUnit>* diagnostics);
 
 struct CharacterizeRun {
   double wall_s = 0, cpu_s = 0;

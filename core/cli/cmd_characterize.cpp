@@ -7,8 +7,6 @@
 // group is appended to a journal beside the output (fsync'ed), so a killed run resumes with only
 // the groups in flight redone. `--shard i/N` and MPI ranks take the groups g ≡ i−1 (mod N);
 // the material is assembled from the records alone, so every way of running writes the same bytes.
-#include <tbb/parallel_for.h>
-
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -115,16 +113,11 @@ void run(AppContext& context, const Options& o) {
     journal += mpi.size() > 1 ? ".rank" + std::to_string(part) + "of" + std::to_string(parts) + ".journal" : ".journal";
 
     // Resume: groups already in the journal are not recomputed.
-    std::set<std::size_t> done;
-    std::uintmax_t valid = 0;
-    if (std::filesystem::exists(journal)) {
-      const JournalContents j = read_journal(journal);
-      if (j.fingerprint != s.fingerprint())
-        throw UsageError(journal.string() + ": journal of a run with other settings; delete it to start over\n  journal:  " +
-                         j.fingerprint + "\n  this run: " + s.fingerprint());
-      for (const auto& r : j.records) done.insert(r.w * static_cast<std::size_t>(s.grid) + (r.a - 1));
-      valid = j.valid_bytes;
-    }
+    const JournalResume resume = read_journal_resume(journal, s);
+    if (!resume.matches)
+      throw UsageError(journal.string() + ": journal of a run with other settings; delete it to start over\n  journal:  " +
+                       resume.fingerprint + "\n  this run: " + s.fingerprint());
+    const std::set<std::size_t>& done = resume.done;
     std::vector<std::size_t> todo;
     for (std::size_t g = 0; g < s.group_count(); ++g)
       if (static_cast<int>(g % static_cast<std::size_t>(parts)) == part && !done.count(g)) todo.push_back(g);
@@ -140,23 +133,8 @@ void run(AppContext& context, const Options& o) {
 
     const auto wall0 = std::chrono::steady_clock::now();
     const std::clock_t cpu0 = std::clock();
-    std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepared(static_cast<std::size_t>(s.instances));
-    if (!todo.empty()) {
-      tbb::parallel_for(0, s.instances, [&](int n) {
-        const CrossSection cs = config.structure->generate(static_cast<std::uint64_t>(n));
-        prepared[n] = config.solver->prepare(cs, config.reflection);
-      });
-    }
     auto diag = diagnostic_units(s);
-    {
-      JournalWriter writer(journal, s, valid);
-      Progress progress("work units", todo.size() * static_cast<std::size_t>(s.grid), quiet);
-      std::size_t count = 0;
-      for (std::size_t g : todo) {
-        writer.append(run_group(config, s, prepared, g, o.diagnostics.empty() ? nullptr : &diag));
-        progress.advance(++count * static_cast<std::size_t>(s.grid));
-      }
-    }
+    compute_groups(config, s, todo, journal, resume.valid_bytes, quiet, o.diagnostics.empty() ? nullptr : &diag);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
 
