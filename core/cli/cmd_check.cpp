@@ -4,6 +4,7 @@
 #include "commands.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
+#include "plumage/scene_config.hpp"
 #include "plumage/species_config.hpp"
 
 namespace plumage::cli {
@@ -29,8 +30,27 @@ void check_file(AppContext& context, const std::string& file) {
     if (!context.quiet) std::cout << file << ": ok (crystal " << cell.name << ")\n";
     return;
   }
+  if (root.has("scene") || root.has("objects")) {
+    const SceneConfig scene = load_scene_config(file);
+    // A feather material names a species file and variant: that file must load with that variant,
+    // and the error points at the scene's material entry as well as into the species file.
+    std::size_t species_checked = 0;
+    for (const auto& request : scene.feather_requests) {
+      if (!request || request->species_config.empty()) continue;
+      try {
+        load_species_config(request->species_config.string(), context.registry(), request->variant);
+      } catch (const Error& e) {
+        throw ConfigError(request->where, "species", std::string("the species config does not load: ") + e.what());
+      }
+      ++species_checked;
+    }
+    if (!context.quiet)
+      std::cout << file << ": ok (scene " << scene.name << ", " << scene.views.size() << " view(s), " << scene.materials.size()
+                << " materials, " << species_checked << " species checked)\n";
+    return;
+  }
   throw ConfigError(root.mark(), "",
-                    "not a plumage configuration: expected a top-level 'species' or 'crystal' key");
+                    "not a plumage configuration: expected a top-level 'species', 'crystal' or 'scene' key");
 }
 
 }  // namespace

@@ -55,6 +55,27 @@ TEST_CASE("plumage check accepts the shipped species and rejects bad files with 
   CHECK_THAT(r.output, Catch::Contains("missing.yaml: no such file"));
 }
 
+TEST_CASE("plumage check validates scenes and the species variants their materials name", "[cli]") {
+  std::string shipped;
+  for (const char* scene : {"demo", "starling", "hummingbird", "mallard", "rockdove-neck"})
+    shipped += " " + source(std::string("configs/scenes/") + scene + ".yaml");
+  auto r = run("check" + shipped);
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("ok (scene demo") && Catch::Contains("1 species checked"));
+  // A variant the species file does not have: the error names the scene's material entry.
+  const fs::path bad = scratch() / "bad_scene.yaml";
+  std::ofstream(bad) << "scene: bad\ncamera: {position_mm: [0, 0, 50], look_at_mm: [0, 0, 0], up: [0, 1, 0]}\n"
+                        "lights: [{type: distant, toward_light: [0, 0, 1], irradiance: 1}]\n"
+                        "materials:\n  f: {type: feather, species: " << source("configs/species/rockdove.yaml")
+                     << ", variant: scarlet}\n"
+                        "objects: [{type: feather, material: f, detail: barb_level}]\n";
+  r = run("check " + bad.string());
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains(bad.string() + ":5:") && Catch::Contains("scarlet"));
+}
+
 TEST_CASE("a failing run writes nothing", "[cli]") {
   const fs::path bad = scratch() / "bad_model.yaml";
   std::ofstream(bad) << "species: x\nnominal_stack: {layers: [{material: keratin, thickness_nm: 5}]}\n"
