@@ -141,6 +141,7 @@ class FeatherBsdf {
   double screen_albedo(const Incident& in, int strata) const;
 
   std::shared_ptr<const FeatherMaterial> material_;
+  MaterialLookupTable table_;  // material_->lookup() with the node data precomputed (same values)
   FeatherBsdfOptions options_;
   double l_min_ = 0.0;
   std::vector<double> transmission_, max_albedo_, p_transmit_;

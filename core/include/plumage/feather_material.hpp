@@ -83,6 +83,33 @@ struct FeatherMaterial {
   double min_correlation_length() const;
 };
 
+// FeatherMaterial::lookup with the per-node Hermite data precomputed: for every node and field
+// the value and the finite-difference slopes f_u, f_v, f_uv (φ fields as offsets from the node's
+// acos(j/grid)), computed by the same expressions as lookup() and combined in the same order, so
+// the result equals lookup()'s (bit for bit without FMA contraction; tested to 1e-12). One lookup
+// reads 4 nodes × 32 contiguous doubles and calls acos once, instead of 8 fields × 4 corners ×
+// 9 node reads with an acos per φ read (72 per lookup): the renderer's hottest function
+// (plugins/pathtracer/NOTES.md, "Speed"). Built once per material (≈ 256 B per node).
+class MaterialLookupTable {
+ public:
+  MaterialLookupTable() = default;
+  explicit MaterialLookupTable(const FeatherMaterial& material);
+  // The same contract and result as FeatherMaterial::lookup.
+  MaterialNode lookup(std::size_t w, double cos_theta_i, double cos_phi_i) const;
+  bool empty() const { return data_.empty(); }
+
+ private:
+  static constexpr int kPerNode = 4 * kMaterialParameters;  // [field][f, f_u, f_v, f_uv]
+  const double* node_data(std::size_t w, int i, int j) const {
+    return data_.data() + ((w * static_cast<std::size_t>(grid_ + 1) + static_cast<std::size_t>(i)) *
+                               static_cast<std::size_t>(grid_ + 1) +
+                           static_cast<std::size_t>(j)) *
+                              kPerNode;
+  }
+  int grid_ = 0;
+  std::vector<double> data_;
+};
+
 // Atomic write (temporary file + rename) with a header, the format version and a checksum;
 // read() verifies both and names the file in every error.
 void write_feather_material(const std::filesystem::path& file, const FeatherMaterial& material);

@@ -1,5 +1,6 @@
 // FeatherMaterial lookups: wavelength bins and bicubic Hermite interpolation over the incident
-// grid (spec geometry-and-brdf §4.7 step 3, §4.9 step 2).
+// grid (spec geometry-and-brdf §4.7 step 3, §4.9 step 2); MaterialLookupTable, the same patches
+// with the per-node data precomputed.
 #include <algorithm>
 #include <cmath>
 
@@ -17,6 +18,25 @@ std::array<double, 4> hermite(double t) {
   return {2 * t3 - 3 * t2 + 1, -2 * t3 + 3 * t2, t3 - 2 * t2 + t, t3 - t2};
 }
 
+// φ_eff and φ_sta follow the nominal azimuth φ_i = acos(cos φ_i) closely (exactly at grazing,
+// spec §4.2), whose slope is infinite at cos φ_i = 1: interpolating them directly misses it by
+// up to 4°. Their offsets from the node's φ_i are smooth; both lookups interpolate those and add
+// φ_i back.
+bool is_phi(double MaterialNode::*field) { return field == &MaterialNode::phi_eff || field == &MaterialNode::phi_sta; }
+
+// F's divided back by cos θ_i cos φ_i, and the parameter ranges (feather_material.hpp, lookup()).
+void finish(MaterialNode& out, double ct, double cp) {
+  const double w_in = ct * cp;
+  out.f_eff = w_in > 0.0 ? std::max(out.f_eff, 0.0) / w_in : 0.0;
+  out.f_sta = w_in > 0.0 ? std::max(out.f_sta, 0.0) / w_in : 0.0;
+  out.m_eff = std::clamp(out.m_eff, 0.001, 1.0);
+  out.m_sta = std::clamp(out.m_sta, 0.001, 1.0);
+  out.phi_eff = std::clamp(out.phi_eff, -0.5 * kPi, 0.5 * kPi);
+  out.phi_sta = std::clamp(out.phi_sta, -0.5 * kPi, 0.5 * kPi);
+  out.pol_share = std::clamp(out.pol_share, 0.0, 1.0);
+  out.correlation = std::max(out.correlation, 0.0);
+}
+
 }  // namespace
 
 std::size_t FeatherMaterial::wavelength_bin(double lambda) const {
@@ -30,12 +50,7 @@ MaterialNode FeatherMaterial::lookup(std::size_t w, double cos_theta_i, double c
   const int i = std::min(static_cast<int>(std::floor(grid * ct)), grid - 1);
   const int j = std::min(static_cast<int>(std::floor(grid * cp)), grid - 1);
   const auto hu = hermite(grid * ct - i), hv = hermite(grid * cp - j);
-  // φ_eff and φ_sta follow the nominal azimuth φ_i = acos(cos φ_i) closely (exactly at grazing,
-  // spec §4.2), whose slope is infinite at cos φ_i = 1: interpolating them directly misses it by
-  // up to 4°. Their offsets from the node's φ_i are smooth; interpolate those and add φ_i back.
-  auto is_phi = [](double MaterialNode::*field) {
-    return field == &MaterialNode::phi_eff || field == &MaterialNode::phi_sta;
-  };
+  // φ fields through their offsets from the nominal φ_i (is_phi above).
   auto q = [&](int a, int b, double MaterialNode::*field) {
     const double v = node(w, a, b).*field;
     return is_phi(field) ? v - std::acos(static_cast<double>(b) / grid) : v;
@@ -61,15 +76,65 @@ MaterialNode FeatherMaterial::lookup(std::size_t w, double cos_theta_i, double c
     }
     out.*field = is_phi(field) ? value + std::acos(cp) : value;
   }
-  const double w_in = ct * cp;
-  out.f_eff = w_in > 0.0 ? std::max(out.f_eff, 0.0) / w_in : 0.0;
-  out.f_sta = w_in > 0.0 ? std::max(out.f_sta, 0.0) / w_in : 0.0;
-  out.m_eff = std::clamp(out.m_eff, 0.001, 1.0);
-  out.m_sta = std::clamp(out.m_sta, 0.001, 1.0);
-  out.phi_eff = std::clamp(out.phi_eff, -0.5 * kPi, 0.5 * kPi);
-  out.phi_sta = std::clamp(out.phi_sta, -0.5 * kPi, 0.5 * kPi);
-  out.pol_share = std::clamp(out.pol_share, 0.0, 1.0);
-  out.correlation = std::max(out.correlation, 0.0);
+  finish(out, ct, cp);
+  return out;
+}
+
+MaterialLookupTable::MaterialLookupTable(const FeatherMaterial& m) : grid_(m.grid) {
+  const int grid = m.grid;
+  const std::size_t per_bin = static_cast<std::size_t>(grid + 1) * static_cast<std::size_t>(grid + 1);
+  if (grid < 1 || m.nodes.size() != m.lambda_nm.size() * per_bin) {
+    throw Error("feather material " + m.label + ": inconsistent node tables");
+  }
+  data_.assign(m.nodes.size() * kPerNode, 0.0);
+  // The expressions of FeatherMaterial::lookup, evaluated once per node (the slopes at a node do
+  // not depend on the cell they are used in).
+  auto span = [&](int k) { return std::pair{std::max(k - 1, 0), std::min(k + 1, grid)}; };
+  for (std::size_t w = 0; w < m.lambda_nm.size(); ++w) {
+    for (int ni = 0; ni <= grid; ++ni) {
+      for (int nj = 0; nj <= grid; ++nj) {
+        double* out = data_.data() + m.node_index(w, ni, nj) * kPerNode;
+        const auto [i0, i1] = span(ni);
+        const auto [j0, j1] = span(nj);
+        for (int k = 0; k < kMaterialParameters; ++k) {
+          const auto field = kMaterialFields[static_cast<std::size_t>(k)];
+          auto q = [&](int a, int b) {
+            const double v = m.node(w, a, b).*field;
+            return is_phi(field) ? v - std::acos(static_cast<double>(b) / grid) : v;
+          };
+          out[4 * k + 0] = q(ni, nj);
+          out[4 * k + 1] = (q(i1, nj) - q(i0, nj)) / (i1 - i0);
+          out[4 * k + 2] = (q(ni, j1) - q(ni, j0)) / (j1 - j0);
+          out[4 * k + 3] = (q(i1, j1) + q(i0, j0) - q(i0, j1) - q(i1, j0)) / ((i1 - i0) * (j1 - j0));
+        }
+      }
+    }
+  }
+}
+
+MaterialNode MaterialLookupTable::lookup(std::size_t w, double cos_theta_i, double cos_phi_i) const {
+  const int grid = grid_;
+  const double ct = std::clamp(cos_theta_i, 0.0, 1.0), cp = std::clamp(cos_phi_i, 0.0, 1.0);
+  const int i = std::min(static_cast<int>(std::floor(grid * ct)), grid - 1);
+  const int j = std::min(static_cast<int>(std::floor(grid * cp)), grid - 1);
+  const auto hu = hermite(grid * ct - i), hv = hermite(grid * cp - j);
+  const double* corner[2][2] = {{node_data(w, i, j), node_data(w, i, j + 1)},
+                                {node_data(w, i + 1, j), node_data(w, i + 1, j + 1)}};
+  const double phi_nominal = std::acos(cp);
+  MaterialNode out;
+  for (int k = 0; k < kMaterialParameters; ++k) {
+    double value = 0.0;
+    for (int a = 0; a < 2; ++a) {
+      for (int b = 0; b < 2; ++b) {
+        const double* d = corner[a][b] + 4 * k;
+        value += hu[a] * hv[b] * d[0] + hu[2 + a] * hv[b] * d[1] + hu[a] * hv[2 + b] * d[2] +
+                 hu[2 + a] * hv[2 + b] * d[3];
+      }
+    }
+    const auto field = kMaterialFields[static_cast<std::size_t>(k)];
+    out.*field = is_phi(field) ? value + phi_nominal : value;
+  }
+  finish(out, ct, cp);
   return out;
 }
 
