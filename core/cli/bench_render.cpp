@@ -36,6 +36,7 @@ struct RenderBench {
   int spp = 64;
   std::string material = "build/materials/mallard-green.plm";
   int traversal_rays_per_pixel = 4;
+  std::string lod = "auto";  // auto | mean | instance (RenderSettings::lod)
   std::string out;  // optional EXR + PNG of the render
   std::string record;
 };
@@ -211,6 +212,13 @@ void bench_render(AppContext& context, const RenderBench& b) {
   auto renderer = context.registry().create_named<Renderer>("pathtracer", ParamView{}, context.registry().context());
   RenderSettings settings;
   settings.samples_per_pixel = b.spp;
+  if (b.lod == "mean") {
+    settings.lod = LevelOfDetail::mean;
+  } else if (b.lod == "instance") {
+    settings.lod = LevelOfDetail::instance;
+  } else if (b.lod != "auto") {
+    throw UsageError("bench render: --lod must be auto, mean or instance (got '" + b.lod + "')");
+  }
   std::unique_ptr<Progress> progress;
   const double cpu0 = cpu_seconds();
   const RenderResult r = renderer->render(scene, settings, [&](std::size_t done, std::size_t total, std::string_view what) {
@@ -235,14 +243,16 @@ void bench_render(AppContext& context, const RenderBench& b) {
         "(feather_geometry.hpp, default FeatherShape, explicit barbules, seed 1: "
      << triangles << " triangles, " << barbules << " barbules; vane = `" << b.material
      << "`, shaft diffuse 0.12), distant light + dim sky, camera above the whole vane; " << b.size << "², " << b.spp
-     << " spp, max depth 8, automatic LOD. Rays = camera + bounce + shadow rays. Embree's raw rate: the same "
+     << " spp, max depth 8, "
+     << (b.lod == "auto" ? std::string("automatic") : b.lod + "-forced") << " LOD. Rays = camera + bounce + shadow rays. Embree's raw rate: the same "
         "triangles, the same pinhole camera, "
      << b.traversal_rays_per_pixel
      << " jittered rays per pixel, closest hit only (no shading), oneTBB over all cores. CPU = process CPU time of "
         "the render. Goal (issue 8): <= 120 s on 2 cores.\n\n"
      << "| machine | command | date | wall s | CPU s | rays | rays/s | Embree rtcIntersect1 rays/s | rtcIntersect16 rays/s | mean-LOD share | goal |\n"
      << "|---|---|---|---|---|---|---|---|---|---|---|\n"
-     << "| " << machine_description() << " | `plumage bench render --size " << b.size << " --spp " << b.spp << "` | "
+     << "| " << machine_description() << " | `plumage bench render --size " << b.size << " --spp " << b.spp
+     << (b.lod == "auto" ? std::string() : " --lod " + b.lod) << "` | "
      << today_iso() << " | " << r.stats.seconds << " | " << cpu << " | " << r.stats.rays << " | " << rays_per_s << " | "
      << t.rays_per_s_1 << " | " << t.rays_per_s_16 << " | " << r.stats.mean_lod_fraction << " | <= 120 s |\n";
   if (!b.record.empty()) {
@@ -261,6 +271,7 @@ void add_bench_render_command(CLI::App& bench, AppContext& context) {
   cmd->add_option("--material", b->material, "Feather material (.plm) of the vane")->capture_default_str();
   cmd->add_option("--traversal-rays", b->traversal_rays_per_pixel, "Rays per pixel of the raw Embree measurement")
       ->capture_default_str();
+  cmd->add_option("--lod", b->lod, "Level of detail: auto, mean or instance")->capture_default_str();
   cmd->add_option("--out", b->out, "Also write <out>.exr and <out>.png");
   cmd->add_option("--record", b->record, "Markdown file to record the result in (e.g. docs/benchmarks.md)");
   cmd->callback([&context, b] { bench_render(context, *b); });

@@ -100,6 +100,20 @@ class FeatherBsdf {
   Incident incident(double lambda_nm, const Direction& wi) const;
   Incident incident_bin(std::size_t bin, const Direction& wi) const;
 
+  // What an Incident needs of ω_i alone, shared by all wavelength bins of one direction (a
+  // spectral renderer asks for 4 bins per direction): cosines, |θ_i|, the material table's cell
+  // and Hermite weights, the energy table's cell.
+  struct IncidentGeometry {
+    Direction wi;
+    double ct = 0.0, cp = 0.0, theta_abs = 0.0;
+    MaterialLookupTable::Point point;
+    std::size_t energy_a = 0, energy_b = 0;  // energy table cell (axis indices)
+    double energy_u = 0.0, energy_v = 0.0;   // and its bilinear weights
+  };
+  IncidentGeometry incident_geometry(const Direction& wi) const;
+  // incident_bin(bin, wi) = incident_bin(bin, incident_geometry(wi)), bit for bit.
+  Incident incident_bin(std::size_t bin, const IncidentGeometry& geometry) const;
+
   // Mean BSDF f̄ (Eq. 16 for reflection, spec §4.9 step 3) plus transmission T_w/π.
   double eval(double lambda_nm, const Direction& wi, const Direction& wo) const;
   double eval(const Incident& in, const Direction& wo) const;
@@ -136,8 +150,10 @@ class FeatherBsdf {
 
  private:
   void compute_energy_budget();  // feather_bsdf_energy.cpp
-  Incident raw_incident(std::size_t bin, double cos_theta, double cos_phi, const Direction& wi) const;
-  double energy_scale(std::size_t bin, double cos_theta, double cos_phi) const;
+  Incident raw_incident(std::size_t bin, const IncidentGeometry& geometry) const;
+  IncidentGeometry make_geometry(double cos_theta, double cos_phi, const Direction& wi) const;
+  void locate_energy(double v, std::size_t& index, double& weight) const;
+  double energy_scale(std::size_t bin, const IncidentGeometry& geometry) const;
   double screen_albedo(const Incident& in, int strata) const;
 
   std::shared_ptr<const FeatherMaterial> material_;
@@ -146,6 +162,7 @@ class FeatherBsdf {
   double l_min_ = 0.0;
   std::vector<double> transmission_, max_albedo_, p_transmit_;
   std::vector<double> axis_, albedo_table_;  // [bin][cos θ_i][cos φ_i] on axis_ × axis_
+  std::vector<std::size_t> axis_start_;      // upper_bound(axis_, c/M) for c = 0 … M (fast locate)
 };
 
 }  // namespace plumage

@@ -98,6 +98,18 @@ class MaterialLookupTable {
   MaterialNode lookup(std::size_t w, double cos_theta_i, double cos_phi_i) const;
   bool empty() const { return data_.empty(); }
 
+  // What a lookup needs of (cos θ_i, cos φ_i) alone, shared by the wavelength bins of one
+  // incident direction: the cell, the Hermite weights and the nominal φ_i.
+  struct Point {
+    double ct = 0.0, cp = 0.0;  // clamped to [0, 1]
+    int i = 0, j = 0;
+    std::array<double, 4> hu{}, hv{};
+    double phi_nominal = 0.0;  // acos(cp)
+  };
+  Point locate(double cos_theta_i, double cos_phi_i) const;
+  // lookup(w, ct, cp) = lookup(w, locate(ct, cp)).
+  MaterialNode lookup(std::size_t w, const Point& point) const;
+
  private:
   static constexpr int kPerNode = 4 * kMaterialParameters;  // [field][f, f_u, f_v, f_uv]
   const double* node_data(std::size_t w, int i, int j) const {

@@ -47,15 +47,42 @@ FeatherBsdf::Incident FeatherBsdf::incident(double lambda_nm, const Direction& w
 }
 
 FeatherBsdf::Incident FeatherBsdf::incident_bin(std::size_t bin, const Direction& wi) const {
+  return incident_bin(bin, incident_geometry(wi));
+}
+
+FeatherBsdf::IncidentGeometry FeatherBsdf::incident_geometry(const Direction& wi) const {
   if (wi.z == 0.0) {
+    IncidentGeometry g;
+    g.wi = wi;
+    return g;
+  }
+  const double ct = std::min(1.0, std::sqrt(wi.x * wi.x + wi.z * wi.z));
+  const double cp = ct > 0.0 ? std::min(1.0, std::abs(wi.z) / ct) : 0.0;
+  return make_geometry(ct, cp, wi);
+}
+
+FeatherBsdf::IncidentGeometry FeatherBsdf::make_geometry(double ct, double cp, const Direction& wi) const {
+  IncidentGeometry g;
+  g.wi = wi;
+  g.ct = ct;
+  g.cp = cp;
+  g.theta_abs = std::atan2(std::abs(wi.y), ct);
+  g.point = table_.locate(ct, cp);
+  if (!albedo_table_.empty()) {
+    locate_energy(ct, g.energy_a, g.energy_u);
+    locate_energy(cp, g.energy_b, g.energy_v);
+  }
+  return g;
+}
+
+FeatherBsdf::Incident FeatherBsdf::incident_bin(std::size_t bin, const IncidentGeometry& g) const {
+  if (g.wi.z == 0.0) {
     Incident in;
     in.bin = bin;
     return in;
   }
-  const double ct = std::min(1.0, std::sqrt(wi.x * wi.x + wi.z * wi.z));
-  const double cp = ct > 0.0 ? std::min(1.0, std::abs(wi.z) / ct) : 0.0;
-  Incident in = raw_incident(bin, ct, cp, wi);
-  in.energy_scale = energy_scale(bin, ct, cp);
+  Incident in = raw_incident(bin, g);
+  in.energy_scale = energy_scale(bin, g);
   in.mean.scale *= in.energy_scale;
   in.stats.scale *= in.energy_scale;
   in.transmission = transmission_albedo(bin);
@@ -64,16 +91,17 @@ FeatherBsdf::Incident FeatherBsdf::incident_bin(std::size_t bin, const Direction
 }
 
 // Lookup and symmetry only (spec §4.9 steps 1–2): no energy clamp, no transmission.
-FeatherBsdf::Incident FeatherBsdf::raw_incident(std::size_t bin, double ct, double cp, const Direction& wi) const {
+FeatherBsdf::Incident FeatherBsdf::raw_incident(std::size_t bin, const IncidentGeometry& g) const {
   Incident in;
   in.bin = bin;
+  const Direction& wi = g.wi;
   if (wi.z == 0.0) return in;
   in.flip_z = wi.z < 0.0 ? -1.0 : 1.0;
   in.mirror_x = wi.x < 0.0 ? -1.0 : 1.0;  // φ_i < 0 (spec §4.9 step 1)
   in.mirror_y = wi.y < 0.0 ? -1.0 : 1.0;  // θ_i < 0
   in.wi_x_world = wi.x;
-  in.theta_abs = std::atan2(std::abs(wi.y), ct);
-  in.p = table_.lookup(bin, ct, cp);  // = material_->lookup(bin, ct, cp), cheaper
+  in.theta_abs = g.theta_abs;
+  in.p = table_.lookup(bin, g.point);  // = material_->lookup(bin, ct, cp), cheaper
   const double sigma = material_->sigma;
   in.mean = Lobe{in.p.m_eff, in.p.phi_eff, sigma, in.p.f_eff};
   in.stats = Lobe{in.p.m_sta, in.p.phi_sta, sigma, in.p.f_sta};

@@ -130,6 +130,13 @@ void FeatherBsdf::compute_energy_budget() {
   for (double f : {0.125, 0.25, 0.75}) axis_.push_back(f / g);
   std::sort(axis_.begin(), axis_.end());
   const std::size_t n = axis_.size();
+  // Start points of locate_energy: M cells of width 1/M, a few axis points per cell.
+  const std::size_t cells = 8 * static_cast<std::size_t>(g);
+  axis_start_.resize(cells + 1);
+  for (std::size_t c = 0; c <= cells; ++c) {
+    axis_start_[c] = static_cast<std::size_t>(
+        std::upper_bound(axis_.begin(), axis_.end(), static_cast<double>(c) / static_cast<double>(cells)) - axis_.begin());
+  }
   albedo_table_.assign(bins * n * n, 0.0);
   std::vector<double> mean_albedo(bins, 0.0);
   const double cap = 1.0 - options_.transmission_albedo - options_.albedo_margin;
@@ -142,7 +149,7 @@ void FeatherBsdf::compute_energy_budget() {
         // The grazing rows hold the limit ct, cp → 0⁺ (the BSDF is 0 exactly on the horizon,
         // but F = table/(cos θ_i cos φ_i) tends to a finite, possibly large, value).
         const double ct = std::max(axis_[a], 1e-6), cp = std::max(axis_[b], 1e-6);
-        const Incident in = raw_incident(w, ct, cp, from_cosines(ct, cp));
+        const Incident in = raw_incident(w, make_geometry(ct, cp, from_cosines(ct, cp)));
         // Three levels, each only where the budget may bind: a plain Gauss–Legendre screen
         // (errors up to a few %), the horizon-split estimate (≤ 1.7 %), and the fitter's
         // accurate hemisphere integral (the rule of its Eq. 12 normalisation, ~1e-7).
@@ -169,19 +176,24 @@ void FeatherBsdf::compute_energy_budget() {
   }
 }
 
-double FeatherBsdf::energy_scale(std::size_t bin, double ct, double cp) const {
+// The index upper_bound(axis_, v) − 1 (clamped to a cell) and the weight of v in that cell: the
+// upper bound found from a precomputed start and a short walk, equal to std::upper_bound's.
+void FeatherBsdf::locate_energy(double v, std::size_t& i, double& t) const {
+  const std::size_t n = axis_.size(), cells = axis_start_.size() - 1;
+  v = std::clamp(v, 0.0, 1.0);
+  const std::size_t c = std::min(static_cast<std::size_t>(v * static_cast<double>(cells)), cells);
+  std::size_t k = axis_start_[c];
+  while (k > 0 && axis_[k - 1] > v) --k;  // c/M rounded above v
+  while (k < n && axis_[k] <= v) ++k;
+  i = std::clamp<std::size_t>(k, 1, n - 1) - 1;
+  t = (v - axis_[i]) / (axis_[i + 1] - axis_[i]);
+}
+
+double FeatherBsdf::energy_scale(std::size_t bin, const IncidentGeometry& g) const {
   if (albedo_table_.empty()) return 1.0;
   const std::size_t n = axis_.size();
-  auto locate = [&](double v, std::size_t& i, double& t) {
-    v = std::clamp(v, 0.0, 1.0);
-    i = static_cast<std::size_t>(std::upper_bound(axis_.begin(), axis_.end(), v) - axis_.begin());
-    i = std::clamp<std::size_t>(i, 1, n - 1) - 1;
-    t = (v - axis_[i]) / (axis_[i + 1] - axis_[i]);
-  };
-  std::size_t a = 0, b = 0;
-  double u = 0.0, v = 0.0;
-  locate(ct, a, u);
-  locate(cp, b, v);
+  const std::size_t a = g.energy_a, b = g.energy_b;
+  const double u = g.energy_u, v = g.energy_v;
   const double* row = albedo_table_.data() + bin * n * n;
   const double albedo = (1 - u) * ((1 - v) * row[a * n + b] + v * row[a * n + b + 1]) +
                         u * ((1 - v) * row[(a + 1) * n + b] + v * row[(a + 1) * n + b + 1]);

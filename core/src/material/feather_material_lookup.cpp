@@ -112,15 +112,29 @@ MaterialLookupTable::MaterialLookupTable(const FeatherMaterial& m) : grid_(m.gri
   }
 }
 
-MaterialNode MaterialLookupTable::lookup(std::size_t w, double cos_theta_i, double cos_phi_i) const {
+MaterialLookupTable::Point MaterialLookupTable::locate(double cos_theta_i, double cos_phi_i) const {
   const int grid = grid_;
-  const double ct = std::clamp(cos_theta_i, 0.0, 1.0), cp = std::clamp(cos_phi_i, 0.0, 1.0);
-  const int i = std::min(static_cast<int>(std::floor(grid * ct)), grid - 1);
-  const int j = std::min(static_cast<int>(std::floor(grid * cp)), grid - 1);
-  const auto hu = hermite(grid * ct - i), hv = hermite(grid * cp - j);
+  Point p;
+  p.ct = std::clamp(cos_theta_i, 0.0, 1.0);
+  p.cp = std::clamp(cos_phi_i, 0.0, 1.0);
+  p.i = std::min(static_cast<int>(std::floor(grid * p.ct)), grid - 1);
+  p.j = std::min(static_cast<int>(std::floor(grid * p.cp)), grid - 1);
+  p.hu = hermite(grid * p.ct - p.i);
+  p.hv = hermite(grid * p.cp - p.j);
+  p.phi_nominal = std::acos(p.cp);
+  return p;
+}
+
+MaterialNode MaterialLookupTable::lookup(std::size_t w, double cos_theta_i, double cos_phi_i) const {
+  return lookup(w, locate(cos_theta_i, cos_phi_i));
+}
+
+MaterialNode MaterialLookupTable::lookup(std::size_t w, const Point& p) const {
+  const int i = p.i, j = p.j;
+  const auto& hu = p.hu;
+  const auto& hv = p.hv;
   const double* corner[2][2] = {{node_data(w, i, j), node_data(w, i, j + 1)},
                                 {node_data(w, i + 1, j), node_data(w, i + 1, j + 1)}};
-  const double phi_nominal = std::acos(cp);
   MaterialNode out;
   for (int k = 0; k < kMaterialParameters; ++k) {
     double value = 0.0;
@@ -132,9 +146,9 @@ MaterialNode MaterialLookupTable::lookup(std::size_t w, double cos_theta_i, doub
       }
     }
     const auto field = kMaterialFields[static_cast<std::size_t>(k)];
-    out.*field = is_phi(field) ? value + phi_nominal : value;
+    out.*field = is_phi(field) ? value + p.phi_nominal : value;
   }
-  finish(out, ct, cp);
+  finish(out, p.ct, p.cp);
   return out;
 }
 

@@ -20,29 +20,72 @@ class IncidentCache {
   IncidentCache() : entries_(std::make_unique<std::array<Entry, kSize>>()) {}
 
   const FeatherBsdf::Incident& get(const FeatherBsdf& bsdf, double lambda_nm, const Direction& wi) {
-    const std::size_t bin = bsdf.material().wavelength_bin(lambda_nm);
     std::uint64_t bits[3];
-    std::memcpy(&bits[0], &wi.x, 8);
-    std::memcpy(&bits[1], &wi.y, 8);
-    std::memcpy(&bits[2], &wi.z, 8);
-    std::uint64_t h = splitmix(reinterpret_cast<std::uintptr_t>(&bsdf) ^ (bin * 0x9e3779b97f4a7c15ULL));
-    for (std::uint64_t b : bits) h = splitmix(h ^ b);
-    Entry& e = (*entries_)[h & (kSize - 1)];
-    if (e.bsdf == &bsdf && e.bin == bin && e.bits[0] == bits[0] && e.bits[1] == bits[1] && e.bits[2] == bits[2]) {
+    key_bits(wi, bits);
+    const std::size_t bin = bsdf.material().wavelength_bin(lambda_nm);
+    Entry& e = slot(bsdf, bin, bits);
+    if (matches(e, bsdf, bin, bits)) {
       ++hits_;
       return e.in;
     }
     ++misses_;
-    e.bsdf = &bsdf;
-    e.bin = bin;
-    std::memcpy(e.bits, bits, sizeof bits);
-    e.in = bsdf.incident_bin(bin, wi);
+    store(e, bsdf, bin, bits, bsdf.incident_bin(bin, wi));
     return e.in;
+  }
+
+  // The Incidents of one direction at N wavelengths (copied out: two of them may share a slot).
+  // Misses share FeatherBsdf::incident_geometry (|θ_i|, the table cells and weights), computed
+  // once on the first miss; incident_bin(bin, geometry) gives the same bits as incident_bin(bin, wi).
+  template <std::size_t N>
+  void get(const FeatherBsdf& bsdf, const std::array<double, N>& lambda_nm, const Direction& wi,
+           std::array<FeatherBsdf::Incident, N>& out) {
+    std::uint64_t bits[3];
+    key_bits(wi, bits);
+    bool have_geometry = false;
+    FeatherBsdf::IncidentGeometry geometry;
+    for (std::size_t j = 0; j < N; ++j) {
+      const std::size_t bin = bsdf.material().wavelength_bin(lambda_nm[j]);
+      Entry& e = slot(bsdf, bin, bits);
+      if (matches(e, bsdf, bin, bits)) {
+        ++hits_;
+        out[j] = e.in;
+        continue;
+      }
+      ++misses_;
+      if (!have_geometry) {
+        geometry = bsdf.incident_geometry(wi);
+        have_geometry = true;
+      }
+      store(e, bsdf, bin, bits, bsdf.incident_bin(bin, geometry));
+      out[j] = e.in;
+    }
   }
   std::uint64_t hits() const { return hits_; }
   std::uint64_t misses() const { return misses_; }
 
  private:
+  struct Entry;
+  static void key_bits(const Direction& wi, std::uint64_t* bits) {
+    std::memcpy(&bits[0], &wi.x, 8);
+    std::memcpy(&bits[1], &wi.y, 8);
+    std::memcpy(&bits[2], &wi.z, 8);
+  }
+  Entry& slot(const FeatherBsdf& bsdf, std::size_t bin, const std::uint64_t* bits) {
+    std::uint64_t h = splitmix(reinterpret_cast<std::uintptr_t>(&bsdf) ^ (bin * 0x9e3779b97f4a7c15ULL));
+    for (int k = 0; k < 3; ++k) h = splitmix(h ^ bits[k]);
+    return (*entries_)[h & (kSize - 1)];
+  }
+  static bool matches(const Entry& e, const FeatherBsdf& bsdf, std::size_t bin, const std::uint64_t* bits) {
+    return e.bsdf == &bsdf && e.bin == bin && e.bits[0] == bits[0] && e.bits[1] == bits[1] && e.bits[2] == bits[2];
+  }
+  static void store(Entry& e, const FeatherBsdf& bsdf, std::size_t bin, const std::uint64_t* bits,
+                    const FeatherBsdf::Incident& in) {
+    e.bsdf = &bsdf;
+    e.bin = bin;
+    std::memcpy(e.bits, bits, sizeof e.bits);
+    e.in = in;
+  }
+
   static constexpr std::size_t kSize = 1024;
   static std::uint64_t splitmix(std::uint64_t x) {
     x += 0x9e3779b97f4a7c15ULL;

@@ -54,7 +54,7 @@ struct Integrator::Vertex {
   V3 p, ng, wv;  // position, unit geometric normal, unit direction toward the viewer
   Frame frame;   // feather: BRDF frame; diffuse: around the normal on the viewer's side
   const FeatherBsdf* bsdf = nullptr;
-  FeatherBsdf::Incident in[kWavelengths];  // at (λ_j, ω_view): the sampling proposal
+  std::array<FeatherBsdf::Incident, kWavelengths> in;  // at (λ_j, ω_view): the sampling proposal
   V3 wv_local;
   Spectrum4 lambda{};
   bool instance = false;
@@ -104,7 +104,7 @@ void Integrator::shade_setup(Vertex& v, const Hit& hit, V3 d, double footprint_m
       v.k = mesh.barbule_id.empty() ? 0 : mesh.barbule_id[hit.prim];
       ++counters.feather_points;
       if (mean) ++counters.feather_mean;
-      for (int j = 0; j < kWavelengths; ++j) v.in[j] = counters.cache.get(*v.bsdf, lambda[j], dir(wl));
+      counters.cache.get(*v.bsdf, lambda, dir(wl), v.in);
       break;
     }
     case SceneMaterial::Kind::diffuse: {
@@ -128,9 +128,10 @@ void Integrator::eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf, I
       // light direction; the pdf is that of sample() below (the viewer-side lobe).
       const V3 l = v.frame.to_local(wl);
       const double c = std::abs(l.z);
+      std::array<FeatherBsdf::Incident, kWavelengths> in;
+      cache.get(*v.bsdf, v.lambda, dir(l), in);
       for (int j = 0; j < kWavelengths; ++j) {
-        const FeatherBsdf::Incident& in = cache.get(*v.bsdf, v.lambda[j], dir(l));
-        const double f = v.instance ? v.bsdf->eval(in, dir(v.wv_local), v.k) : v.bsdf->eval(in, dir(v.wv_local));
+        const double f = v.instance ? v.bsdf->eval(in[j], dir(v.wv_local), v.k) : v.bsdf->eval(in[j], dir(v.wv_local));
         fcos[j] = f * c;
       }
       // Only the hero's pdf enters the light/BSDF MIS weight (NEE does not change r).
@@ -168,9 +169,10 @@ bool Integrator::sample(const Vertex& v, PathSampler& rng, V3& wl, Spectrum4& fc
       wl = normalize(v.frame.to_world(l));
       transmitted = s.transmitted;
       const double c = std::abs(l.z);
+      std::array<FeatherBsdf::Incident, kWavelengths> in;
+      cache.get(*v.bsdf, v.lambda, s.wo, in);
       for (int j = 0; j < kWavelengths; ++j) {
-        const FeatherBsdf::Incident& in = cache.get(*v.bsdf, v.lambda[j], s.wo);
-        const double f = v.instance ? v.bsdf->eval(in, dir(v.wv_local), v.k) : v.bsdf->eval(in, dir(v.wv_local));
+        const double f = v.instance ? v.bsdf->eval(in[j], dir(v.wv_local), v.k) : v.bsdf->eval(in[j], dir(v.wv_local));
         fcos[j] = f * c;
         pdf[j] = j == 0 ? s.pdf : v.bsdf->pdf(v.in[j], s.wo);
       }
