@@ -116,10 +116,22 @@ Cell spec_cell(const std::string& variant, MaterialMode mode = MaterialMode::Bro
 std::vector<std::string> spec_cell_names();
 
 // ------------------------------------------------------------------ parameters & results
+/// Time discretisation of the Lorentz ADE  P̈ + γṖ + ω0² P = Δε ω0² E  (NOTES.md §3b).
+///  Bilinear (default): ω0² P and the drive Δε ω0² E averaged as (X⁺ + 2X + X⁻)/4, damping by
+///    (P⁺ − P⁻)/2dt; the discrete ε is the exact Lorentz ε at T = (2/dt) tan(ω dt/2), passive for
+///    every real ω, so the grid is stable for every dt below the non-dispersive Courant limit with
+///    the sites' ε∞ (semi-implicit: E⁺ is solved per site).
+///  CentralDifference (engine revision ≤ 2): ω0² P and the drive at time n (explicit). Its
+///    permittivity at the grid's Nyquist frequency is ε∞ − Σ Δε w²/(4 − w²), w = ω0 dt, which is
+///    below 1 for keratin (ε∞ = 1.017): stable only for dt ≤ the smaller limit of
+///    stable_time_step(); kept for the stability tests and to reproduce old tables.
+enum class LorentzUpdate { Bilinear, CentralDifference };
+
 struct SimParams {
     int nx = 38;                  ///< cells per period (h = a_x / nx; square cells)
     double courant = 0.95;        ///< fraction of the Courant limit used when dt <= 0
     double dt = 0.0;              ///< explicit time step (checked against the limit)
+    LorentzUpdate lorentz_update = LorentzUpdate::Bilinear;
     bool allow_unstable_dt = false;   ///< testing only: skip the Courant refusal
     int pml_cells = 24;
     double pml_sigma_factor = 1.0;    ///< σ_max = factor · 0.8 (m+1) / h
@@ -193,6 +205,16 @@ struct Spectrum {
 /// Courant limit for the 2D Yee grid with exact ∂y → i k_y:  dt ≤ 1/sqrt(2/h² + k_y²/4)
 /// (c = 1, valid when every ε∞ ≥ 1).
 double courant_limit(double h, double ky, double min_eps_inf = 1.0);
+
+/// Permittivity the ADE realises at the grid's Nyquist frequency ω dt = π (lossless part; the
+/// damping term vanishes there): ε∞ for Bilinear, ε∞ − Σ Δε w²/(4 − w²) (w = ω0 dt < 2, else
+/// −∞) for CentralDifference. A homogeneous medium is stable iff dt²(8/h² + k_y²) ≤ 4 ε_N(dt)
+/// (and ε_N of a mixed site is the convex mix of its materials').
+double nyquist_eps(const MaterialModel& m, double dt, LorentzUpdate update);
+
+/// Largest stable time step of a cell: the Courant limit with min(1, min ε∞) for Bilinear; for
+/// CentralDifference also the largest dt with dt²(8/h² + k_y²) ≤ 4 ε_N(dt) for every material.
+double stable_time_step(const Cell& cell, double h, double ky, LorentzUpdate update);
 
 /// One broadband run at fixed (k_x, k_y): both source families (J_y and M_y sheets) plus their
 /// 1-cell-wide normalisation runs, stepped in lockstep. Throws std::invalid_argument on a time

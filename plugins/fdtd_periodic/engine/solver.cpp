@@ -337,11 +337,13 @@ public:
     SiteModel sites;
     std::vector<GlobalPole> gpoles;
     std::vector<std::vector<double>> c1, c2;          // per pole constants (c1, c2 scalars)
-    std::vector<std::vector<cplx>> P[3], Pold[3];      // [comp][pole][site-list idx]
-    std::vector<cplx> Ptot[3];
+    std::vector<std::vector<cplx>> P[3], Pold[3];      // [comp][pole][site]: P, P⁻ (central) / s1, s2 (bilinear)
+    std::vector<cplx> Ptot[3];                          // Σ P (central) / Σ s1 (bilinear)
     std::vector<std::vector<double>> W[3];                  // [comp][pole] dense c3·weight
     std::vector<std::pair<int, int>> rows[3];              // [comp][pole] row range
     std::vector<cplx> Psig[3];
+    bool bilinear = true;
+    std::vector<double> einv_eff[3];                        // 1/(ε∞ + Σ w c) (bilinear), else 1/ε∞
     std::vector<cplx> tmpE;
     std::vector<cplx> src_phase;
     std::vector<double> omegas;
@@ -388,12 +390,21 @@ public:
             prof(L.z0 + k * L.h, ib_int[k], b_int[k], a_int[k], pml_int[k]);
             prof(L.z0 + (k + 0.5) * L.h, ib_half[k], b_half[k], a_half[k], pml_half[k]);
         }
-        // ADE
+        // ADE constants: P⁺ = a1 P + a2 P⁻ + c (drive), per pole (NOTES.md §3b).
+        //  Bilinear: (P⁺ − 2P + P⁻)/dt² + γ(P⁺ − P⁻)/2dt + ω0²(P⁺ + 2P + P⁻)/4
+        //            = Δε ω0² (E⁺ + 2E + E⁻)/4,  drive = E⁺ + 2E + E⁻ (E⁺ solved per site).
+        //  CentralDifference: ω0² P and Δε ω0² E at time n, drive = E.
+        bilinear = Pm.lorentz_update == LorentzUpdate::Bilinear;
         for (const auto& g : gpoles) {
-            double w0 = g.pole.omega0, ga = g.pole.gamma;
-            double den = 1.0 + 0.5 * ga * dt;
-            c1.push_back({(2.0 - w0 * w0 * dt * dt) / den, -(1.0 - 0.5 * ga * dt) / den,
-                          g.pole.delta_eps * w0 * w0 * dt * dt / den});
+            const double w2 = g.pole.omega0 * g.pole.omega0 * dt * dt, gd = 0.5 * g.pole.gamma * dt;
+            if (bilinear) {
+                const double den = 1.0 + gd + 0.25 * w2;
+                c1.push_back({(2.0 - 0.5 * w2) / den, -(1.0 - gd + 0.25 * w2) / den,
+                              0.25 * g.pole.delta_eps * w2 / den});
+            } else {
+                const double den = 1.0 + gd;
+                c1.push_back({(2.0 - w2) / den, -(1.0 - gd) / den, g.pole.delta_eps * w2 / den});
+            }
         }
         for (int c = 0; c < 3; ++c) {
             Ptot[c].assign(N, 0.0);
@@ -417,6 +428,16 @@ public:
                 for (const auto& [site, w] : sl) W[c][g][site - r0 * L.nx] = w * c1[g][2];
             }
             Psig[c].assign(sites.sigma_sites[c].size(), 0.0);
+            // Bilinear: E⁺ = (D⁺ − Σ known part of P⁺)/(ε∞ + Σ_p w_p c_p) per site.
+            einv_eff[c] = sites.eps_inf_inv[c];
+            if (bilinear) {
+                std::vector<double> extra(N, 0.0);
+                for (size_t g = 0; g < gpoles.size(); ++g) {
+                    const int off = rows[c][g].first * L.nx;
+                    for (size_t q = 0; q < W[c][g].size(); ++q) extra[off + q] += W[c][g][q];
+                }
+                for (int s = 0; s < N; ++s) einv_eff[c][s] = 1.0 / (1.0 / einv_eff[c][s] + extra[s]);
+            }
         }
         // source phases
         src_phase.resize(L.nx);
@@ -538,30 +559,36 @@ public:
                 for (int i = 0; i < nx; ++i) Dy[row * nx + i] -= (wt * g) * src_phase[i];
         }
         // ---------------- constitutive update (Lorentz ADE, conductivity, ε∞)
+        // Bilinear: P(z) = c (1 + z⁻¹)² / (1 − a1 z⁻¹ − a2 z⁻²) E(z) in transposed direct form,
+        //   P⁺ = c E⁺ + s1,  s1 ← 2c E⁺ + a1 P⁺ + s2,  s2 ← c E⁺ + a2 P⁺  (P ↦ s1, Pold ↦ s2),
+        // so E⁺ = (D⁺ − Σ s1)/(ε∞ + Σ c) needs only the stored Ptot = Σ s1 (no E⁻ array).
+        // Central difference: P⁺ = a1 P + a2 P⁻ + c E, Ptot = Σ P, then E⁺ = (D⁺ − Ptot)/ε∞.
         std::vector<cplx>* Es[3] = {&Ex, &Ey, &Ez};
         std::vector<cplx>* Ds[3] = {&Dx, &Dy, &Dz};
+        const int N = nx * nz;
         for (int c = 0; c < 3; ++c) {
             auto& E = *Es[c];
             auto& D = *Ds[c];
             cplx* __restrict Pt = Ptot[c].data();
-            for (size_t g = 0; g < gpoles.size(); ++g) {
-                const double a1 = c1[g][0], a2 = c1[g][1];
-                const int off = rows[c][g].first * nx;
-                const int M = static_cast<int>(P[c][g].size());
-                cplx* __restrict Pg = P[c][g].data();
-                cplx* __restrict Po = Pold[c][g].data();
-                const double* __restrict Wg = W[c][g].data();
-                const cplx* __restrict Eo = E.data() + off;
-                cplx* __restrict Pto = Pt + off;
-                for (int q = 0; q < M; ++q) {
-                    const cplx pn = a1 * Pg[q] + a2 * Po[q] + Wg[q] * Eo[q];
-                    Pto[q] += pn - Pg[q];
-                    Po[q] = Pg[q];
-                    Pg[q] = pn;
+            if (!bilinear)
+                for (size_t g = 0; g < gpoles.size(); ++g) {
+                    const double a1 = c1[g][0], a2 = c1[g][1];
+                    const int off = rows[c][g].first * nx;
+                    const int M = static_cast<int>(P[c][g].size());
+                    cplx* __restrict Pg = P[c][g].data();
+                    cplx* __restrict Po = Pold[c][g].data();
+                    const double* __restrict Wg = W[c][g].data();
+                    const cplx* __restrict Eo = E.data() + off;
+                    cplx* __restrict Pto = Pt + off;
+                    for (int q = 0; q < M; ++q) {
+                        const cplx pn = a1 * Pg[q] + a2 * Po[q] + Wg[q] * Eo[q];
+                        Pto[q] += pn - Pg[q];
+                        Po[q] = Pg[q];
+                        Pg[q] = pn;
+                    }
                 }
-            }
             const auto& ss = sites.sigma_sites[c];
-            const auto& einv = sites.eps_inf_inv[c];
+            const auto& einv = einv_eff[c];
             tmpE.resize(ss.size());
             for (size_t q = 0; q < ss.size(); ++q) {
                 const int s = ss[q].first;
@@ -571,12 +598,30 @@ public:
                 Psig[c][q] += hs * (en + E[s]);
                 tmpE[q] = en;
             }
-            const int N = nx * nz;
             cplx* __restrict Ep = E.data();
             const cplx* __restrict Dp = D.data();
             const double* __restrict ei = einv.data();
             for (int s = 0; s < N; ++s) Ep[s] = ei[s] * (Dp[s] - Pt[s]);
             for (size_t q = 0; q < ss.size(); ++q) E[ss[q].first] = tmpE[q];
+            if (bilinear)
+                for (size_t g = 0; g < gpoles.size(); ++g) {
+                    const double a1 = c1[g][0], a2 = c1[g][1];
+                    const int off = rows[c][g].first * nx;
+                    const int M = static_cast<int>(P[c][g].size());
+                    cplx* __restrict s1 = P[c][g].data();
+                    cplx* __restrict s2 = Pold[c][g].data();
+                    const double* __restrict Wg = W[c][g].data();
+                    const cplx* __restrict En = E.data() + off;
+                    cplx* __restrict Pto = Pt + off;
+                    for (int q = 0; q < M; ++q) {
+                        const cplx we = Wg[q] * En[q];
+                        const cplx pn = we + s1[q];
+                        const cplx s1n = 2.0 * we + a1 * pn + s2[q];
+                        s2[q] = we + a2 * pn;
+                        Pto[q] += s1n - s1[q];
+                        s1[q] = s1n;
+                    }
+                }
         }
         ++step_no;
         accumulate_dft();
@@ -663,15 +708,18 @@ Setup make_setup(const Cell& cell, double ky, const SimParams& P) {
     int n_ss = static_cast<int>(std::ceil((cell.structure_depth + P.substrate_below) / h - 1e-9));
     S.L.z0 = -(n_air + P.pml_cells) * h;
     S.L.nz = P.pml_cells + n_air + n_ss + P.pml_cells + 1;
-    double min_einf = 1e300;
-    for (const auto& m : cell.materials) min_einf = std::min(min_einf, m.eps_inf);
-    double lim = courant_limit(h, ky, std::min(1.0, min_einf));
+    // Stability limit from the Courant condition and, for the central-difference ADE, the
+    // Lorentz poles (stability.cpp, NOTES.md §3b).
+    const double lim = stable_time_step(cell, h, ky, P.lorentz_update);
     if (P.dt > 0) {
         if (P.dt > lim && !P.allow_unstable_dt) {
             std::ostringstream os;
             os.precision(10);
             os << "fdtd: time step dt = " << P.dt << " exceeds the Courant limit " << lim
-               << " (c = 1, h = " << h << " um, k_y = " << ky << " /um: dt <= 1/sqrt(2/h^2 + k_y^2/4))";
+               << " (c = 1, h = " << h << " um, k_y = " << ky << " /um: dt <= 1/sqrt(2/h^2 + k_y^2/4)";
+            if (P.lorentz_update == LorentzUpdate::CentralDifference)
+                os << ", lowered so that dt^2 (8/h^2 + k_y^2) <= 4 eps_Nyquist of every material";
+            os << ")";
             throw std::invalid_argument(os.str());
         }
         S.dt = P.dt;
@@ -706,14 +754,25 @@ std::vector<GlobalPole> global_poles(const Cell& cell) {
 
 }  // namespace
 
-// Discrete permittivity of a material model as the Yee/ADE scheme realises it at ω (time step
-// dt): the central-difference Lorentz ADE gives Δε ω0²/(ω0² − Ω² − iγ sin(ω dt)/dt) with
-// Ω = (2/dt) sin(ω dt/2), the trapezoidal conductivity i ε'' tan(ω_ref dt/2)/tan(ω dt/2).
-cplx discrete_eps(const MaterialModel& m, double w, double dt) {
-    const double Om = 2.0 / dt * std::sin(0.5 * w * dt);
+// Response ω0²/(ω0² − ω̃² − iγ ν) of one pole as the ADE realises it at ω (time step dt):
+// central difference: ω̃ = Ω = (2/dt) sin(ω dt/2), ν = sin(ω dt)/dt; bilinear: ω̃ = ν =
+// T = (2/dt) tan(ω dt/2), i.e. the exact pole at the warped frequency T (NOTES.md §3b).
+cplx discrete_pole(const LorentzPole& p, double w, double dt, LorentzUpdate update) {
+    double wt, nu;
+    if (update == LorentzUpdate::Bilinear) {
+        wt = nu = 2.0 / dt * std::tan(0.5 * w * dt);
+    } else {
+        wt = 2.0 / dt * std::sin(0.5 * w * dt);
+        nu = std::sin(w * dt) / dt;
+    }
+    return p.omega0 * p.omega0 / cplx(p.omega0 * p.omega0 - wt * wt, -p.gamma * nu);
+}
+
+// Discrete permittivity of a material model as the Yee/ADE scheme realises it at ω: the poles
+// of discrete_pole, the trapezoidal conductivity i ε'' tan(ω_ref dt/2)/tan(ω dt/2).
+cplx discrete_eps(const MaterialModel& m, double w, double dt, LorentzUpdate update) {
     cplx e = m.eps_inf;
-    for (const auto& p : m.poles)
-        e += p.delta_eps * p.omega0 * p.omega0 / cplx(p.omega0 * p.omega0 - Om * Om, -p.gamma * std::sin(w * dt) / dt);
+    for (const auto& p : m.poles) e += p.delta_eps * discrete_pole(p, w, dt, update);
     if (m.eps_imag_ref != 0.0 && m.omega_ref > 0)
         e += cplx(0.0, m.eps_imag_ref * std::tan(0.5 * m.omega_ref * dt) / std::tan(0.5 * w * dt));
     return e;
@@ -731,7 +790,7 @@ cplx discrete_eps(const MaterialModel& m, double w, double dt) {
 // material is returned unchanged. The ambient is never corrected (the normalisation runs and the
 // extraction use its numerical k_z already).
 MaterialModel dispersion_corrected(const MaterialModel& m, double h, double dt, double kx, double ky,
-                                   const std::vector<double>& ws) {
+                                   const std::vector<double>& ws, LorentzUpdate update) {
     const int np = static_cast<int>(m.poles.size());
     const bool sig = m.eps_imag_ref != 0.0 && m.omega_ref > 0;
     const int nu = 1 + np + (sig ? 1 : 0);
@@ -747,12 +806,11 @@ MaterialModel dispersion_corrected(const MaterialModel& m, double h, double dt, 
         const double Om = 2.0 / dt * std::sin(0.5 * w * dt);
         const cplx kz = std::sqrt(m.eps(w) * w * w - kx * kx - ky * ky);
         const cplx target = (K2(kz) + K2(kx) + ky * ky) / (Om * Om);
-        const cplx d = target - discrete_eps(m, w, dt);
+        const cplx d = target - discrete_eps(m, w, dt, update);
         b(2 * j) = d.real();
         b(2 * j + 1) = d.imag();
         std::vector<cplx> col{1.0};
-        for (const auto& p : m.poles)
-            col.push_back(p.omega0 * p.omega0 / cplx(p.omega0 * p.omega0 - Om * Om, -p.gamma * std::sin(w * dt) / dt));
+        for (const auto& p : m.poles) col.push_back(discrete_pole(p, w, dt, update));
         if (sig) col.push_back(cplx(0.0, std::tan(0.5 * m.omega_ref * dt) / std::tan(0.5 * w * dt)));
         for (int u = 0; u < nu; ++u) {
             A(2 * j, u) = col[u].real();
@@ -820,8 +878,14 @@ Spectrum run_spectrum(const Cell& cell, double kx, double ky, const std::vector<
         const int nfit = whi > wlo ? 24 : 1;
         for (int j = 0; j < nfit; ++j) ws.push_back(nfit == 1 ? whi : wlo + (whi - wlo) * j / (nfit - 1));
         for (size_t m = 0; m < run_cell.materials.size(); ++m)
-            if (static_cast<int>(m) != cell.ambient)
-                run_cell.materials[m] = dispersion_corrected(cell.materials[m], L.h, S.dt, kx, ky, ws);
+            if (static_cast<int>(m) != cell.ambient) {
+                MaterialModel corr = dispersion_corrected(cell.materials[m], L.h, S.dt, kx, ky, ws, P.lorentz_update);
+                // The refit lowers ε∞ slightly; keep the material only if dt stays stable with it.
+                Cell probe;
+                probe.materials = {corr};
+                if (S.dt <= stable_time_step(probe, L.h, ky, P.lorentz_update) || P.allow_unstable_dt)
+                    run_cell.materials[m] = corr;
+            }
     }
     auto gp = global_poles(run_cell);
     SiteModel sm_main = build_sites(run_cell, L, P, S.dt, gp, false);
@@ -1040,8 +1104,7 @@ std::array<double, 2> measure_pml_reflection(const MaterialModel& medium, double
     const int nin = static_cast<int>(std::ceil(1.2 / h));
     L.nz = 2 * P.pml_cells + nin + 1;
     L.z0 = -(P.pml_cells + nin / 2) * h;
-    double lim = courant_limit(h, ky, std::min(1.0, medium.eps_inf));
-    double dt = P.dt > 0 ? P.dt : P.courant * lim;
+    double dt = P.dt > 0 ? P.dt : P.courant * stable_time_step(cell, h, ky, P.lorentz_update);
     const int ks = L.row_of(0.0);
     const int dk = static_cast<int>(std::lround(0.12 / h));
     const int rows[4] = {ks - 2 * dk - 5, ks - dk - 5, ks + dk + 5, ks + 2 * dk + 5};

@@ -80,7 +80,7 @@ class FdtdTableBuilder final : public TableBuilder {
     meta.period_nm = cell.a_x_nm;
     meta.producer = "plumage fdtd_periodic 1.0.0 fidelity=" + fidelity_ +
                     " nx=" + std::to_string(o.nx) + " k_step=" + std::to_string(o.k_step_per_um) +
-                    " engine=2 (exact_fill " + (o.sim.exact_fill ? "on" : "off") + ", dispersion_correction " +
+                    " engine=3 (bilinear Lorentz ADE, exact_fill " + (o.sim.exact_fill ? "on" : "off") + ", dispersion_correction " +
                     (o.sim.dispersion_correction ? "on" : "off") + ") grazing_anchors=" + std::to_string(o.grazing_anchors);
     std::ostringstream tag;
     tag.precision(17);
@@ -89,8 +89,9 @@ class FdtdTableBuilder final : public TableBuilder {
         << cell.rows << ";" << cell.cortex_nm << ";" << cell.host.name() << ";" << cell.rod.name() << ";"
         << cell.core.name() << ";" << cell.channel.name() << ";" << o.sim.smoothing << ";" << o.sim.courant << ";"
         << o.sim.air_above << ";" << o.sim.substrate_below
-        // engine revision 2: exact fill fractions + dispersion correction (runs of rev 1 are not reused)
-        << ";engine2;" << o.sim.dispersion_correction << ";" << o.sim.exact_fill << ";" << o.grazing_anchors;
+        // engine revision 2: exact fill fractions + dispersion correction; revision 3: bilinear
+        // Lorentz ADE (NOTES.md §3b). Runs of older revisions are not reused.
+        << ";engine3;" << o.sim.dispersion_correction << ";" << o.sim.exact_fill << ";" << o.grazing_anchors;
     o.checkpoint_tag = tag.str();
     return fdtd_table::build_table(
         [&cell](double lambda_um) { return fdtd_table::cell_from_crystal(cell, lambda_um); },
