@@ -2,7 +2,7 @@
 // Near-field LU (Eigen SparseLU/COLAMD; optionally others) fill-in, factor and solve times (1 and
 // several right-hand sides at once), near-field SpMV and the full H mat-vec. Usage:
 //   bem_probe_precond <species.yaml> <lambda_nm> <ppw> [nrhs] [variants: colamd,amdonly,umfpack]
-// Environment: GMRES_RHS=k (also run GMRES on k beam right-hand sides), MATVEC_REPS=r (mat-vec
+// Environment: LEAF, ETA (H-matrix leaf size, admissibility), GMRES_RHS=k (also run GMRES on k beam right-hand sides), MATVEC_REPS=r (mat-vec
 // timing only), COUNT_LEAVES=1 (near-field size per leaf size and eta, no integrals),
 // UMF_ORDERING / UMF_STRATEGY / UMF_REPORT (UMFPACK controls).
 #include <sys/resource.h>
@@ -83,6 +83,8 @@ int main(int argc, char** argv) {
   BemOptions o;
   o.points_per_wavelength = ppw;
   o.method = BemOptions::Method::hmatrix;
+  if (getenv("LEAF")) o.hmatrix.leaf_size = atoi(getenv("LEAF"));
+  if (getenv("ETA")) o.hmatrix.eta = atof(getenv("ETA"));
   const double k0 = 2.0 * std::numbers::pi / lambda, beta = 0.0;
   const Mesh mesh = build_mesh(prep->geometry, lambda, ppw);
   const auto med = media(prep->geometry, lambda, beta);
