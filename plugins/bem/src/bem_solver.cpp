@@ -5,6 +5,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <functional>
 #include <fstream>
 
 #include "plumage/error.hpp"
@@ -50,13 +52,40 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
   sys->mesh = build_mesh(geometry, lambda_nm, options.points_per_wavelength);
   sys->media = media(geometry, lambda_nm, sys->beta);
   const double n = sys->mesh.unknowns();
+  if (options.method == BemOptions::Method::hmatrix &&
+      options.hmatrix.preconditioner == HMatrixOptions::Preconditioner::dense_single &&
+      n > options.max_dense_single_unknowns) {
+    throw Error("bem: " + std::to_string(sys->mesh.unknowns()) + " unknowns at " + std::to_string(lambda_nm) +
+                " nm exceed max_dense_single_unknowns = " + std::to_string(options.max_dense_single_unknowns) +
+                " (the dense_single preconditioner would need " + std::to_string(static_cast<long>(n * n * 8 / 1e9 + 0.5)) +
+                " GB); use preconditioner: near_field or raise the limit if the machine has the memory");
+  }
   if (options.method == BemOptions::Method::hmatrix) {
     auto t0 = std::chrono::steady_clock::now();
     sys->hmatrix = std::make_unique<HMatrix>(sys->mesh, sys->media, sys->k0, sys->beta, options.quadrature,
                                              options.hmatrix);
     sys->assembly_seconds = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
-    sys->near_field = std::make_unique<NearFieldLU>(sys->hmatrix->take_preconditioner_matrix());
+    if (options.hmatrix.preconditioner == HMatrixOptions::Preconditioner::dense_single) {
+      // Tens of minutes at ~35 000 unknowns: say how far the factorisation is (every 10 %).
+      std::function<void(double)> progress;
+      int reported = 0;
+      Eigen::MatrixXcf dense = sys->hmatrix->to_dense_single(sys->mesh, sys->media);
+      const auto t_lu = std::chrono::steady_clock::now();
+      sys->expand_seconds = seconds_since(t0);
+      if (n >= 10000) {
+        progress = [&](double f) {
+          if (static_cast<int>(10.0 * f) <= reported) return;
+          reported = static_cast<int>(10.0 * f);
+          const double s = seconds_since(t_lu);
+          std::fprintf(stderr, "bem: single-precision LU of %d unknowns at %g nm: %d %% after %.0f s, ETA %.0f s\n",
+                       sys->mesh.unknowns(), lambda_nm, 10 * reported, s, s * (1.0 - f) / f);
+        };
+      }
+      sys->dense_single = std::make_unique<SinglePrecisionLU>(std::move(dense), 256, progress);
+    } else {
+      sys->near_field = std::make_unique<NearFieldLU>(sys->hmatrix->take_preconditioner_matrix());
+    }
     sys->factor_seconds = seconds_since(t0);
     return sys;
   }
@@ -92,7 +121,8 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
     else out.noalias() = Z * in;
   };
   const Op M = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) {
-    if (block_jacobi) block_jacobi->apply(in, out);
+    if (dense_single) dense_single->apply(in, out);
+    else if (block_jacobi) block_jacobi->apply(in, out);
     else if (near_field) near_field->apply(in, out);
     else out = in;
   };
@@ -211,6 +241,8 @@ std::vector<FarField> BemSolver::solve(const Prepared& prepared, double lambda_n
           << " near_nnz " << st.near_nonzeros << " precond_nnz " << st.preconditioner_nonzeros << " blocks "
           << st.admissible_blocks << " dense_fallback " << st.dense_blocks << " mean_rank " << st.mean_rank
           << " max_rank " << st.max_rank << " hmatrix_gb " << st.memory_gb();
+      log << " preconditioner " << (sys->dense_single ? "dense_single" : "near_field");
+      if (sys->dense_single) log << " expand_s " << sys->expand_seconds << " dense_single_gb " << sys->dense_single->memory_gb();
     }
     if (!iterations.empty()) {
       log << " iterations";

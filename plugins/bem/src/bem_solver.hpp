@@ -24,6 +24,7 @@
 #include "incident.hpp"
 #include "mesh.hpp"
 #include "plumage/scattering_solver.hpp"
+#include "single_precision_lu.hpp"
 
 namespace plumage::bem {
 
@@ -40,6 +41,9 @@ struct BemOptions {
   // Dense LU stores N² complex numbers: refuse larger systems (16 GB at 31 600 unknowns) with a
   // clear error instead of exhausting memory. The fast solver of issue 6 (Deliver 2) is not done.
   int max_dense_unknowns = 20000;
+  // Method hmatrix with preconditioner dense_single stores N² complex<float> (8 N² bytes, plus the
+  // H-matrix): refused above this size (12.8 GB at 40 000) instead of exhausting memory.
+  int max_dense_single_unknowns = 40000;
   double gmres_tolerance = 1e-8;  // relative residual (method gmres)
   int gmres_restart = 300;
   int gmres_max_iterations = 5000;
@@ -82,7 +86,9 @@ struct System {
   std::unique_ptr<BlockJacobi> block_jacobi;
   std::unique_ptr<NearFieldLU> near_field;
   std::unique_ptr<HMatrix> hmatrix;
+  std::unique_ptr<SinglePrecisionLU> dense_single;
   double assembly_seconds = 0, factor_seconds = 0;
+  double expand_seconds = 0;  // dense_single: H-matrix → dense float (part of factor_seconds)
   // Solves for every column of B (LU, or GMRES column by column); `iterations` gets the GMRES
   // iteration count per column (empty for LU).
   Eigen::MatrixXcd solve(const Eigen::MatrixXcd& B, const BemOptions& options, std::vector<int>* iterations = nullptr) const;

@@ -236,6 +236,7 @@ HMatrix::HMatrix(const Mesh& mesh, const std::vector<Medium>& md, double k0, dou
     for (int k = 0; k < ns; ++k) {
       const Segment& S = mesh.segments[trees[d].order[k]];
       for (int l = 0; l < 8; ++l) D.loc2glob[8 * k + l] = global_index(mesh, S, l);
+      D.seg.push_back(trees[d].order[k]);
       D.tx.push_back(S.t.x), D.tz.push_back(S.t.z), D.nx.push_back(S.n.x), D.nz.push_back(S.n.z);
       D.h.push_back(S.h), D.sign.push_back(S.a == d ? 1.0 : -1.0);
     }
@@ -270,6 +271,7 @@ HMatrix::HMatrix(const Mesh& mesh, const std::vector<Medium>& md, double k0, dou
   }
   stats_.near_pairs = static_cast<long>(pairs.size());
   const double pre_factor = opt.preconditioner_factor;
+  const bool keep_pre = opt.preconditioner == HMatrixOptions::Preconditioner::near_field;
   constexpr std::size_t kChunk = 16384;
   std::vector<PairIntegrals> buf(kChunk);
   std::vector<Triplet> tn, tp;
@@ -302,8 +304,8 @@ HMatrix::HMatrix(const Mesh& mesh, const std::vector<Medium>& md, double k0, dou
       const Segment& A = mesh.segments[pairs[p].a];
       const Segment& B = mesh.segments[pairs[p].b];
       const PairIntegrals& in = buf[p - p0];
-      const bool close = pre_factor <= 0.0 || pairs[p].a == pairs[p].b ||
-                         segment_distance(A, B) <= pre_factor * std::max(A.h, B.h);
+      const bool close = keep_pre && (pre_factor <= 0.0 || pairs[p].a == pairs[p].b ||
+                         segment_distance(A, B) <= pre_factor * std::max(A.h, B.h));
       auto scatter = [&](const Segment& X, const Segment& Y, const PairIntegrals& pi) {
         const Local8 loc = local_pair(X, Y, pi, dom, md[dom], k0, beta);
         int ra[8], cb[8];
@@ -408,6 +410,95 @@ void HMatrix::apply(const Eigen::VectorXcd& x, Eigen::VectorXcd& y) const {
     for (std::size_t k = 0; k < d.blocks.size(); ++k) yl.segment(8 * d.blocks[k].r0, 8 * d.blocks[k].nr) += part[k];
     for (std::size_t k = 0; k < nl; ++k) y[d.loc2glob[k]] += yl[k];
   }
+}
+
+Eigen::MatrixXcf HMatrix::to_dense_single(const Mesh& mesh, const std::vector<Medium>& md) const {
+  using cf = std::complex<float>;
+  Eigen::MatrixXcf A = Eigen::MatrixXcf::Zero(n_, n_);
+  for (int r = 0; r < near_.outerSize(); ++r) {
+    for (Eigen::SparseMatrix<std::complex<double>, Eigen::RowMajor>::InnerIterator it(near_, r); it; ++it) {
+      A(r, it.col()) += cf(it.value());
+    }
+  }
+  // Admissible blocks in tiles of ≤ kRows × kCols segments: a batch of tiles is expanded in
+  // parallel into buffers (8×8 per segment pair), then added to A serially in tile order, since
+  // neighbouring segments share tent unknowns (rows/columns) across tiles.
+  constexpr int kRows = 16, kCols = 256;
+  struct Tile {
+    int dom;
+    const LowRank* b;
+    int ka0, nka, kb0, nkb;
+  };
+  std::vector<Tile> tiles;
+  for (int d = 0; d < static_cast<int>(domains_.size()); ++d) {
+    for (const LowRank& b : domains_[d].blocks) {
+      for (int ka0 = 0; ka0 < b.nr; ka0 += kRows) {
+        for (int kb0 = 0; kb0 < b.nc; kb0 += kCols) {
+          tiles.push_back({d, &b, ka0, std::min(kRows, b.nr - ka0), kb0, std::min(kCols, b.nc - kb0)});
+        }
+      }
+    }
+  }
+  constexpr std::size_t kBatch = 64;
+  std::vector<std::vector<cf>> buf(kBatch);
+  for (std::size_t t0 = 0; t0 < tiles.size(); t0 += kBatch) {
+    const std::size_t t1 = std::min(tiles.size(), t0 + kBatch);
+    tbb::parallel_for(t0, t1, [&](std::size_t t) {
+      const Tile& tile = tiles[t];
+      const Domain& d = domains_[tile.dom];
+      const LowRank& b = *tile.b;
+      const int rows = 2 * tile.nka, cols = 2 * tile.nkb;
+      auto kernel = [&](int k) -> Eigen::MatrixXcd {
+        const Eigen::MatrixXcd& U = b.U[k];
+        const Eigen::MatrixXcd& V = b.V[k];
+        if (U.cols() == 0) return Eigen::MatrixXcd::Zero(rows, cols);
+        if (V.size() == 0) return U.block(2 * tile.ka0, 2 * tile.kb0, rows, cols);  // stored in full
+        return U.middleRows(2 * tile.ka0, rows) * V.middleCols(2 * tile.kb0, cols);
+      };
+      const Eigen::MatrixXcd KI = kernel(0), KX = kernel(1), KZ = kernel(2);
+      std::vector<cf>& out = buf[t - t0];
+      out.resize(std::size_t(64) * tile.nka * tile.nkb);
+      for (int ka = 0; ka < tile.nka; ++ka) {
+        const int s = b.r0 + tile.ka0 + ka;
+        const Segment& SA = mesh.segments[d.seg[s]];
+        for (int kb = 0; kb < tile.nkb; ++kb) {
+          const int u = b.c0 + tile.kb0 + kb;
+          const Segment& SB = mesh.segments[d.seg[u]];
+          const double hh = d.h[s] * d.h[u];  // the kernels are stored ÷ h_A h_B
+          PairIntegrals pi;
+          for (int i = 0; i < 2; ++i) {
+            for (int j = 0; j < 2; ++j) {
+              const int r = 2 * ka + i, c = 2 * kb + j;
+              pi.I[i][j] = hh * KI(r, c);
+              pi.P[i][j] = hh * (SA.n.x * KX(r, c) + SA.n.z * KZ(r, c));
+              pi.Q[i][j] = hh * (SB.n.x * KX(r, c) + SB.n.z * KZ(r, c));
+            }
+          }
+          const Local8 loc = local_pair(SA, SB, pi, tile.dom, md[tile.dom], k0_, beta_);
+          cf* o = out.data() + std::size_t(64) * (std::size_t(ka) * tile.nkb + kb);
+          for (int r = 0; r < 8; ++r) {
+            for (int c = 0; c < 8; ++c) o[8 * r + c] = cf(loc[r][c]);
+          }
+        }
+      }
+    });
+    for (std::size_t t = t0; t < t1; ++t) {
+      const Tile& tile = tiles[t];
+      const Domain& d = domains_[tile.dom];
+      const LowRank& b = *tile.b;
+      const cf* o = buf[t - t0].data();
+      for (int ka = 0; ka < tile.nka; ++ka) {
+        const int* ra = &d.loc2glob[8 * (b.r0 + tile.ka0 + ka)];
+        for (int kb = 0; kb < tile.nkb; ++kb, o += 64) {
+          const int* cb = &d.loc2glob[8 * (b.c0 + tile.kb0 + kb)];
+          for (int c = 0; c < 8; ++c) {
+            for (int r = 0; r < 8; ++r) A(ra[r], cb[c]) += o[8 * r + c];
+          }
+        }
+      }
+    }
+  }
+  return A;
 }
 
 // One admissible block: out (8 nr) = B x (8 nc), the algebra of local_block (assembly.cpp, §6.4)

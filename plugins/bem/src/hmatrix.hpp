@@ -31,6 +31,12 @@ struct HMatrixOptions {
   // unknowns, tolerance 1e-6): whole near field 66 / 77 iterations, factor 10: 183 / 209, factor 4:
   // > 1500 (NOTES.md §5).
   double preconditioner_factor = 0.0;
+  // near_field: SparseLU of (part of) the near field (above). dense_single: the whole operator
+  // expanded to complex<float> and factorised (single_precision_lu.hpp) — 8 N² bytes, for rod
+  // lattices where no near field that fits in memory preconditions (NOTES.md §5); no near-field
+  // copy is kept then.
+  enum class Preconditioner { near_field, dense_single };
+  Preconditioner preconditioner = Preconditioner::near_field;
 };
 
 struct HMatrixStats {
@@ -54,6 +60,10 @@ class HMatrix {
   // The preconditioner's part of the near field (column major, for SparseLU).
   Eigen::SparseMatrix<std::complex<double>> take_preconditioner_matrix() { return std::move(pre_); }
   const HMatrixStats& stats() const { return stats_; }
+  // The whole operator as a dense complex<float> matrix: the near field plus every admissible
+  // block expanded (its kernels U V, then the Galerkin algebra of local_block per segment pair).
+  // Summed in a fixed order: the same bits on any thread count.
+  Eigen::MatrixXcf to_dense_single(const Mesh& mesh, const std::vector<Medium>& media) const;
 
  private:
   struct LowRank {
@@ -62,6 +72,7 @@ class HMatrix {
   };
   struct Domain {
     std::vector<int> loc2glob;  // 8 per segment in cluster order
+    std::vector<int> seg;       // mesh segment index per cluster-order position
     std::vector<double> tx, tz, nx, nz, h, sign;  // per segment in cluster order; sign = σ of the domain
     std::complex<double> eps;
     std::vector<LowRank> blocks;

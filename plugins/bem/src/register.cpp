@@ -11,6 +11,7 @@ void register_bem(plumage::Registrar& registrar) {
   using plumage::bem::BemOptions;
   static constexpr std::string_view kIncidence[] = {"beam", "plane_wave"};
   static constexpr std::string_view kMethod[] = {"dense", "gmres", "hmatrix"};
+  static constexpr std::string_view kPreconditioner[] = {"near_field", "dense_single"};
   registrar.add<plumage::ScatteringSolver>(
       {.kind = "",
        .type = "bem",
@@ -26,13 +27,18 @@ void register_bem(plumage::Registrar& registrar) {
                   {"window_fraction", "number", "1", "0.25", "beam footprint exp(-x^2/s^2), s = fraction * width"},
                   {"method", "choice", "-", "dense",
                    "dense (LU) | gmres (near-field-LU preconditioned GMRES, dense mat-vec) | hmatrix (GMRES, "
-                   "hierarchical-matrix mat-vec with ACA blocks, near-field LU preconditioner; large barbules)"},
+                   "hierarchical-matrix mat-vec with ACA blocks, near-field or dense single-precision LU preconditioner; large barbules)"},
                   {"aca_tolerance", "number", "1", "1e-6", "method hmatrix: relative error of each ACA block"},
                   {"eta", "number", "1", "1", "method hmatrix: admissibility max(diam) <= eta * distance"},
                   {"leaf_size", "integer", "1", "24", "method hmatrix: segments per leaf cluster (larger: bigger near field and preconditioner, fewer iterations)"},
                   {"preconditioner_factor", "number", "1", "0",
                    "method hmatrix: preconditioner = near-field entries of segments closer than factor * h "
                    "(0: the whole near field)"},
+                  {"preconditioner", "choice", "-", "near_field",
+                   "method hmatrix: near_field (sparse LU of the near field) | dense_single (LU of the whole "
+                   "operator in complex<float>, 8 N^2 bytes: rod lattices where the near field does not precondition)"},
+                  {"max_dense_single_unknowns", "integer", "1", "40000",
+                   "preconditioner dense_single: refuse larger systems (memory 8 N^2 bytes)"},
                   {"gmres_tolerance", "number", "1", "1e-8", "methods gmres/hmatrix: relative residual"},
                   {"gmres_restart", "integer", "1", "300", "methods gmres/hmatrix: Krylov vectors kept"},
                   {"warm_start", "bool", "-", "true",
@@ -54,6 +60,11 @@ void register_bem(plumage::Registrar& registrar) {
         o.hmatrix.eta = p.number_or("eta", 1.0, plumage::Limits::positive());
         o.hmatrix.leaf_size = static_cast<int>(p.integer_or("leaf_size", 24, plumage::Limits::positive()));
         o.hmatrix.preconditioner_factor = p.number_or("preconditioner_factor", 0.0, plumage::Limits::non_negative());
+        o.hmatrix.preconditioner = p.choice_or("preconditioner", kPreconditioner, "near_field") == "dense_single"
+                                       ? plumage::bem::HMatrixOptions::Preconditioner::dense_single
+                                       : plumage::bem::HMatrixOptions::Preconditioner::near_field;
+        o.max_dense_single_unknowns =
+            static_cast<int>(p.integer_or("max_dense_single_unknowns", 40000, plumage::Limits::positive()));
         o.gmres_tolerance = p.number_or("gmres_tolerance", 1e-8, plumage::Limits::positive());
         o.gmres_restart = static_cast<int>(p.integer_or("gmres_restart", 300, plumage::Limits::positive()));
         o.warm_start = p.boolean_or("warm_start", true);

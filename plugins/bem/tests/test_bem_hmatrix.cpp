@@ -12,6 +12,7 @@
 
 #include "bem_test_support.hpp"
 #include "pair_integrals.hpp"
+#include "single_precision_lu.hpp"
 #include "plumage/species_config.hpp"
 #include "plumage/structure_generator.hpp"
 #include "test_registry.hpp"
@@ -111,6 +112,89 @@ TEST_CASE("bem hmatrix: GMRES with the hierarchical matrix reproduces dense LU (
                 "|x_H - x_LU| / |x_LU| = %.1e\n", name, n, its[0], its[1], its[2], its[3], diff);
     CHECK(diff <= 1e-5);
     CHECK(its[0] < 300);
+  };
+  run(coated_cylinder(lambda, 20.0), "coated cylinder");
+  run(junction_body(), "junction body");
+}
+
+TEST_CASE("bem single-precision LU: PA = LU to float rounding, any panel width, same bits on 1 and 2 threads") {
+  // A non-symmetric complex matrix whose diagonal is not dominant, so partial pivoting has work.
+  const int n = 700;
+  std::mt19937 rng(5);
+  std::normal_distribution<float> nd;
+  Eigen::MatrixXcf A(n, n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) A(i, j) = {nd(rng), nd(rng)};
+  }
+  A.diagonal() *= 0.01f;
+  const Eigen::MatrixXcd Ad = A.cast<std::complex<double>>();
+  const Eigen::VectorXcd b = random_vector(n, 3);
+  const Eigen::VectorXcd x_ref = Ad.partialPivLu().solve(b);
+  // Eigen's own float LU is the reference for what float rounding allows (LU backward error grows
+  // like √n ε_float ≈ 1.6e-6 here, times the growth factor).
+  const Eigen::PartialPivLU<Eigen::MatrixXcf> eigen_lu(A);
+  const Eigen::MatrixXcd eigen_LU = eigen_lu.reconstructedMatrix().cast<std::complex<double>>();
+  const double eigen_backward = (eigen_LU - Ad).norm() / Ad.norm();
+  const Eigen::VectorXcd x_eigen = eigen_lu.solve(b.cast<std::complex<float>>()).cast<std::complex<double>>();
+  const double eigen_forward = (x_eigen - x_ref).norm() / x_ref.norm();
+  std::printf("  Eigen PartialPivLU<complex<float>>: |A - P^-1 LU|/|A| = %.1e, |x - x_double|/|x| = %.1e\n",
+              eigen_backward, eigen_forward);
+  Eigen::MatrixXcf first;
+  for (int panel : {1, 5, 64, 256, 1024}) {
+    for (int threads : {1, 2}) {
+      tbb::global_control gc(tbb::global_control::max_allowed_parallelism, threads);
+      SinglePrecisionLU lu(Eigen::MatrixXcf(A), panel);
+      // P A = L U: apply the row interchanges to A and compare with the product of the factors
+      Eigen::MatrixXcd PA = Ad;
+      for (int k = 0; k < n; ++k) PA.row(k).swap(PA.row(lu.pivots()[k]));
+      const Eigen::MatrixXcd F = lu.factors().cast<std::complex<double>>();
+      const Eigen::MatrixXcd LU = F.triangularView<Eigen::UnitLower>() * F.triangularView<Eigen::Upper>().toDenseMatrix();
+      const double backward = (PA - LU).norm() / Ad.norm();
+      Eigen::VectorXcd x;
+      lu.apply(b, x);
+      const double forward = (x - x_ref).norm() / x_ref.norm();
+      const double residual = (Ad * x - b).norm() / (Ad.norm() * x.norm());
+      std::printf("  single-precision LU n = %d, panel %4d, %d thread(s): |PA - LU|/|A| = %.1e, "
+                  "|x - x_double|/|x| = %.1e, |Ax - b|/(|A||x|) = %.1e\n", n, panel, threads, backward, forward, residual);
+      CHECK(backward <= 2.0 * eigen_backward);
+      CHECK(residual <= 1e-6);
+      CHECK(forward <= 2.0 * eigen_forward);
+      if (panel == 64) {
+        if (threads == 1) first = lu.factors();
+        else CHECK((lu.factors().array() == first.array()).all());
+      }
+    }
+  }
+}
+
+TEST_CASE("bem hmatrix: dense_single preconditioner (expanded H-matrix, float LU) reproduces dense LU in a few iterations") {
+  const double lambda = 500.0, theta = deg_to_rad(30.0);
+  auto run = [&](const CrossSection& cs, const char* name) {
+    BemOptions dense, fast;
+    dense.points_per_wavelength = fast.points_per_wavelength = 20.0;
+    fast.method = BemOptions::Method::hmatrix;
+    fast.hmatrix.aca_tolerance = 1e-8;
+    fast.hmatrix.preconditioner = HMatrixOptions::Preconditioner::dense_single;
+    fast.gmres_tolerance = 1e-10;
+    const auto prep = prepare_geometry(cs);
+    const auto a = build_system(prep->geometry, lambda, theta, dense);
+    const auto b = build_system(prep->geometry, lambda, theta, fast);
+    const int n = a->mesh.unknowns();
+    // the expansion against the directly assembled matrix (a->Z holds the LU, so assemble again)
+    const Eigen::MatrixXcd Z = assemble_dense(a->mesh, a->media, a->k0, a->beta, dense.quadrature);
+    const Eigen::MatrixXcd E = b->hmatrix->to_dense_single(b->mesh, b->media).cast<std::complex<double>>();
+    const double expand = (E - Z).norm() / Z.norm();
+    Eigen::MatrixXcd B(n, 4);
+    for (int c = 0; c < 4; ++c) fill_rhs(a->mesh, a->k0, plane_wave(theta, 0.7 + 0.2 * (c / 2), c % 2), B.col(c));
+    std::vector<int> its;
+    const Eigen::MatrixXcd xa = a->solve(B, dense), xb = b->solve(B, fast, &its);
+    const double diff = (xa - xb).norm() / xa.norm();
+    std::printf("  dense_single %s: N = %d, |H expanded (float) - Z|/|Z| = %.1e, iterations %d %d %d %d, "
+                "|x - x_LU|/|x_LU| = %.1e\n", name, n, expand, its[0], its[1], its[2], its[3], diff);
+    CHECK(expand <= 1e-6);
+    CHECK(diff <= 1e-7);
+    for (int it : its) CHECK(it <= 12);
+    CHECK(b->near_field == nullptr);
   };
   run(coated_cylinder(lambda, 20.0), "coated cylinder");
   run(junction_body(), "junction body");
