@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "pathtracer.hpp"
 #include "render_fixtures.hpp"
@@ -111,13 +112,9 @@ TEST_CASE("pathtracer furnace: a white Lambertian sphere in a constant environme
   }
 }
 
-TEST_CASE("pathtracer furnace: a feather-BSDF sphere is no brighter than the environment", "[pathtracer]") {
-  RenderSettings settings;
-  settings.samples_per_pixel = kSpp;
-  settings.max_depth = 8;
-  settings.lod = LevelOfDetail::mean;
-  const RenderResult r = pathtracer::PathTracer().render(furnace(feather(synthetic_feather(1.0, 8))), settings, {});
-  // Luminance (Y) of the sphere pixels against the environment's (Y = R).
+namespace {
+// Mean sRGB luminance (Y) of the pixels well inside the sphere's silhouette, and its standard error.
+std::pair<double, double> sphere_luminance(const RenderResult& r) {
   double sum = 0, sum2 = 0, count = 0;
   for (int y = 0; y < kSize; ++y) {
     for (int x = 0; x < kSize; ++x) {
@@ -130,7 +127,19 @@ TEST_CASE("pathtracer furnace: a feather-BSDF sphere is no brighter than the env
       count += 1;
     }
   }
-  const double mean = sum / count, se = std::sqrt(std::max(0.0, sum2 / count - mean * mean) / count);
+  const double mean = sum / count;
+  return {mean, std::sqrt(std::max(0.0, sum2 / count - mean * mean) / count)};
+}
+}  // namespace
+
+TEST_CASE("pathtracer furnace: a feather-BSDF sphere is no brighter than the environment", "[pathtracer]") {
+  RenderSettings settings;
+  settings.samples_per_pixel = kSpp;
+  settings.max_depth = 8;
+  settings.lod = LevelOfDetail::mean;
+  const RenderResult r = pathtracer::PathTracer().render(furnace(feather(synthetic_feather(1.0, 8))), settings, {});
+  // Luminance (Y) of the sphere pixels against the environment's (Y = R).
+  const auto [mean, se] = sphere_luminance(r);
   std::printf("furnace feather: sphere luminance %.5f ± %.5f, environment %.5f\n", mean, se, kEnv);
   INFO("sphere luminance " << mean << " ± " << se << " vs environment " << kEnv);
   CHECK(mean <= kEnv + 4.0 * se);
@@ -149,19 +158,7 @@ TEST_CASE("pathtracer furnace: a smooth dielectric sphere (ior 1.5) vanishes too
   settings.samples_per_pixel = 32;
   settings.max_depth = 32;
   const RenderResult r = pathtracer::PathTracer().render(furnace(glass), settings, {});
-  double sum = 0, sum2 = 0, count = 0;
-  for (int y = 0; y < kSize; ++y) {
-    for (int x = 0; x < kSize; ++x) {
-      const double dx = x + 0.5 - 0.5 * kSize, dy = y + 0.5 - 0.5 * kSize;
-      if (dx * dx + dy * dy >= std::pow(0.8 * 0.34 * kSize, 2)) continue;
-      const RgbF p = r.rgb.at(x, y);
-      const double Y = srgb_luminance({p.r, p.g, p.b});
-      sum += Y;
-      sum2 += Y * Y;
-      count += 1;
-    }
-  }
-  const double mean = sum / count, se = std::sqrt(std::max(0.0, sum2 / count - mean * mean) / count);
+  const auto [mean, se] = sphere_luminance(r);
   std::printf("furnace dielectric: sphere luminance %.5f ± %.5f, environment %.5f\n", mean, se, kEnv);
   CHECK(std::abs(mean - kEnv) <= 4.0 * se + 0.005 * kEnv);
 }
