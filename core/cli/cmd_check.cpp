@@ -14,6 +14,11 @@ namespace {
 void check_file(AppContext& context, const std::string& file) {
   auto doc = ConfigDocument::load(file);
   ParamView root = doc.root();
+  if (root.has("comparison")) {  // before `species`, which a comparison names too
+    const std::string what = check_comparison_config(file, context);
+    if (!context.quiet) std::cout << file << ": ok (" << what << ")\n";
+    return;
+  }
   if (root.has("species")) {
     auto variants = species_variants(file);
     if (variants.empty()) variants.push_back("");
@@ -50,7 +55,7 @@ void check_file(AppContext& context, const std::string& file) {
     return;
   }
   throw ConfigError(root.mark(), "",
-                    "not a plumage configuration: expected a top-level 'species', 'crystal' or 'scene' key");
+                    "not a plumage configuration: expected a top-level 'species', 'crystal', 'scene' or 'comparison' key");
 }
 
 }  // namespace
@@ -58,7 +63,7 @@ void check_file(AppContext& context, const std::string& file) {
 void add_check_command(CLI::App& app, AppContext& context) {
   auto* cmd = app.add_subcommand("check", "Validate configuration files (exit 2 on the first error)");
   auto files = std::make_shared<std::vector<std::string>>();
-  cmd->add_option("files", *files, "Species, crystal or scene YAML files")->required();
+  cmd->add_option("files", *files, "Species, crystal, scene or comparison YAML files")->required();
   cmd->callback([&context, files] {
     for (const auto& f : *files) check_file(context, f);
   });

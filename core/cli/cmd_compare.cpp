@@ -636,6 +636,14 @@ void run(AppContext& context, const Options& o) {
 
 }  // namespace
 
+std::string check_comparison_config(const std::string& file, AppContext& context) {
+  const Comparison c = load_comparison(file, context.registry());
+  std::ostringstream out;
+  out << "comparison " << c.name << ", " << c.methods.size() << " methods (reference " << c.methods[c.reference].name
+      << "), " << c.lambdas.size() << " wavelengths, " << c.incidents.size() << " incident directions";
+  return out.str();
+}
+
 void add_compare_command(CLI::App& app, AppContext& context) {
   auto o = std::make_shared<Options>();
   auto* cmd = app.add_subcommand(

@@ -76,6 +76,22 @@ TEST_CASE("plumage check validates scenes and the species variants their materia
   CHECK_THAT(r.output, Catch::Contains(bad.string() + ":5:") && Catch::Contains("scarlet"));
 }
 
+TEST_CASE("plumage check validates comparison configs with their solvers", "[cli]") {
+  auto r = run("check " + source("configs/compare/rockdove.yaml") + " " + source("configs/compare/mallard.yaml"));
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("ok (comparison mallard, 7 methods (reference fullwave_rods)"));
+  // A solver option that is not one of the choices: file, line and the valid ones.
+  const fs::path bad = scratch() / "bad_compare.yaml";
+  std::ofstream(bad) << "comparison: bad\nspecies: " << source("configs/species/rockdove.yaml")
+                     << "\nvariant: forest\nwavelengths_nm: [550]\nincident_deg: [[0, 0]]\nreference: fw\nmethods:\n"
+                        "  - name: fw\n    solver: {type: bem, method: hmatrix, preconditioner: dense_float}\n";
+  r = run("check " + bad.string());
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains(bad.string() + ":9:") && Catch::Contains("dense_single"));
+}
+
 TEST_CASE("a failing run writes nothing", "[cli]") {
   const fs::path bad = scratch() / "bad_model.yaml";
   std::ofstream(bad) << "species: x\nnominal_stack: {layers: [{material: keratin, thickness_nm: 5}]}\n"
