@@ -359,6 +359,32 @@ struct MethodRun {
   std::size_t regions = 0;
 };
 
+// Remaining wall time of the solve loop, for the progress line. A full-wave solve costs 10^5–10^6
+// approximate ones, so a mean over all solves so far says nothing: each method's remaining solves
+// are priced at its own mean so far, or, for a method not started yet, at the mean of the methods
+// of the same solver type that have run (zero if none has: the estimate is then a lower bound).
+double remaining_seconds(const std::vector<Method>& methods, const std::vector<MethodRun>& runs,
+                         std::size_t current_method, std::size_t solves_done_in_current,
+                         std::size_t solves_per_method) {
+  const auto per_solve = [&](std::size_t mi) {
+    const std::size_t solves = mi < current_method ? solves_per_method : solves_done_in_current;
+    return runs[mi].solve_s / static_cast<double>(solves);
+  };
+  double eta = per_solve(current_method) * static_cast<double>(solves_per_method - solves_done_in_current);
+  for (std::size_t mi = current_method + 1; mi < methods.size(); ++mi) {
+    double sum = 0.0;
+    int count = 0;
+    for (std::size_t k = 0; k <= current_method; ++k) {
+      if (methods[k].solver_type == methods[mi].solver_type) {
+        sum += per_solve(k);
+        ++count;
+      }
+    }
+    if (count > 0) eta += sum / count * static_cast<double>(solves_per_method);
+  }
+  return eta;
+}
+
 void run(AppContext& context, const Options& o) {
   Comparison c = load_comparison(o.config, context.registry());
   if (!o.reference.empty()) {
@@ -462,7 +488,9 @@ void run(AppContext& context, const Options& o) {
           }
           r.results[members[k]][l] = std::move(fields[k]);
         }
-        progress.advance(++done);
+        ++done;
+        const std::size_t solves_per_method = c.lambdas.size() * by_theta.size();
+        progress.advance(done, remaining_seconds(c.methods, runs, mi, done - mi * solves_per_method, solves_per_method));
       }
     }
   }

@@ -15,14 +15,18 @@ class Progress {
       : what_(std::move(what)), total_(total), quiet_(quiet), tty_(isatty(STDERR_FILENO) != 0),
         start_(std::chrono::steady_clock::now()) {}
 
-  void advance(std::size_t done) {
+  // eta_s: the caller's own estimate of the remaining time, for jobs whose units differ in cost
+  // (negative: extrapolate from the mean time per unit so far).
+  void advance(std::size_t done, double eta_s = -1.0) {
     if (quiet_ || total_ == 0) return;
     const int tenth = static_cast<int>(10 * done / total_);
     if (!tty_ && tenth == last_tenth_ && done != total_) return;
     last_tenth_ = tenth;
     const double elapsed =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double eta = done ? elapsed * static_cast<double>(total_ - done) / static_cast<double>(done) : 0.0;
+    const double eta = eta_s >= 0.0 ? eta_s
+                       : done      ? elapsed * static_cast<double>(total_ - done) / static_cast<double>(done)
+                                   : 0.0;
     const int width = 30;
     const int filled = static_cast<int>(width * done / total_);
     std::string bar(static_cast<std::size_t>(filled), '#');
