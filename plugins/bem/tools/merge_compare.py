@@ -83,7 +83,11 @@ def main():
 
     incidents = sorted({(c[0], c[1]) for c in cases}, key=lambda x: (x[0], -x[1]))
     lams = sorted({c[2] for c in cases})
+    # One colour per method across panels, and one legend listing every method of any panel.
+    cycle = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    colour = {m: cycle[i % len(cycle)] for i, m in enumerate(order)}
     for (th, ph) in incidents:
+        handles = {}
         fig, axes = plt.subplots(1, len(lams), figsize=(max(8.0, 5.2 * len(lams)), 4.2), squeeze=False)
         for ax, lam in zip(axes[0], lams):
             for m in order:
@@ -92,12 +96,13 @@ def main():
                     continue
                 x, y = data[key]
                 ref = m == args.reference or m.startswith("fullwave")
-                ax.plot(x, y, lw=1.6 if ref else 1.0, ls="-" if ref else "--", label=m)
+                (line,) = ax.plot(x, y, lw=1.6 if ref else 1.0, ls="-" if ref else "--", color=colour[m], label=m)
+                handles.setdefault(m, line)
             ax.set_title(f"lambda = {lam:g} nm")
             ax.set_xlabel("outgoing azimuth phi_o (deg)")
             ax.set_xlim(-90, 90)
         axes[0][0].set_ylabel("reflectance per rad (Eq. 10), unpolarised")
-        axes[0][-1].legend(fontsize=7)
+        axes[0][-1].legend([handles[m] for m in order if m in handles], [m for m in order if m in handles], fontsize=7)
         fig.suptitle(f"{args.title} theta_i = {th:g} deg, phi_i = {ph:g} deg", fontsize=10)
         fig.tight_layout()
         tag = f"theta{th:g}_phi{ph:g}".replace("-", "m").replace(".", "p")
