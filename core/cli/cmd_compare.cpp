@@ -583,6 +583,17 @@ void run(AppContext& context, const Options& o) {
   std::cout << "(unpolarised; per wavelength and polarization in " << fs::path(base).concat("-metrics.csv").string() << ")\n";
 
   if (o.no_pictures) return;
+  {
+    // Error against the reference versus cost, one point per method (scripts/plot_error_cost.py).
+    std::ostringstream title;
+    title << c.species.common_name << ", " << c.segment_um << " um segment: error against " << ref.name
+          << " versus cost";
+    const fs::path png = fs::path(base).concat("-error-vs-cost.png");
+    draw_script_chart("plot_error_cost.py", {}, png, title.str(),
+                      {"--run", c.name, fs::path(base).concat("-metrics.csv").string(),
+                       fs::path(base).concat("-times.csv").string()});
+    if (!context.quiet) std::cerr << "wrote " << png.string() << "\n";
+  }
   // Pictures like Figs. 8–9, one pair per incident direction: the unpolarised patterns of all
   // methods overlaid per wavelength, and colour strips along the cone (spectrum → XYZ under
   // D65 → sRGB, one exposure shared by all methods so strips compare).

@@ -78,7 +78,7 @@ TEST_CASE("plumage compare: a tiny approximate-against-approximate comparison", 
   REQUIRE(r.status == 0);
   for (const char* f : {"tiny-metrics.csv", "tiny-patterns.csv", "tiny-times.csv"}) CHECK(fs::exists(out / f));
   for (const char* f : {"tiny-patterns-theta0_phi0.png", "tiny-patterns-theta0_phim30.png",
-                        "tiny-colours-theta0_phi0.png", "tiny-colours-theta0_phim30.png"}) {
+                        "tiny-colours-theta0_phi0.png", "tiny-colours-theta0_phim30.png", "tiny-error-vs-cost.png"}) {
     INFO(f);
     CHECK(is_png(out / f));
   }
