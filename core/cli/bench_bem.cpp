@@ -85,6 +85,14 @@ Run run_width(AppContext& context, const BemBench& b, double width_um) {
   const SpeciesConfig cfg = load_species_config(path, context.registry());
   std::filesystem::remove(path);
   const CrossSection cs = cfg.structure->generate(0);
+  // Narrow segments can be outside the generator's valid range (at 0.3 um the hummingbird's
+  // platelets cross each other and the outline): timing such a mesh would be meaningless.
+  if (const auto problems = validate(cs); !problems.empty()) {
+    std::ostringstream m;
+    m << "bench bem: " << b.config << " at width " << width_um << " um is not a valid cross section ("
+      << problems.front() << "); choose a wider segment";
+    throw UsageError(m.str());
+  }
   const double theta = deg_to_rad(b.theta_deg);
   std::vector<double> phi_i;
   if (b.azimuths >= 20 || b.azimuths < 2) {

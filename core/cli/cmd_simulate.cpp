@@ -14,6 +14,7 @@
 #include "grid_parse.hpp"
 #include "plumage/atomic_file.hpp"
 #include "plumage/colour.hpp"
+#include "plumage/cross_section.hpp"
 #include "plumage/data_paths.hpp"
 #include "plumage/far_field_set.hpp"
 #include "plumage/species_config.hpp"
@@ -215,11 +216,25 @@ void run(AppContext& context, const Options& o) {
   }
 
   // Geometry and instance-only preparation, once per instance (reused by every unit).
+  // An invalid instance (e.g. a segment narrower than the generator's valid range, where
+  // platelets cross each other and the outline) would be meshed as given and solved without
+  // complaint by a full-wave solver, so it is refused here, as `plumage geometry` refuses it.
   std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepared(instances);
+  std::vector<std::string> invalid(instances);
   tbb::parallel_for(0, instances, [&](int n) {
     const CrossSection cs = config.structure->generate(static_cast<std::uint64_t>(n));
+    if (const auto problems = validate(cs); !problems.empty()) {
+      invalid[n] = problems.front() + (problems.size() > 1 ? " (and more)" : "");
+      return;
+    }
     prepared[n] = config.solver->prepare(cs, config.reflection);
   });
+  for (int n = 0; n < instances; ++n) {
+    if (!invalid[n].empty()) {
+      throw Error(o.config + ": instance " + std::to_string(n) + " is geometrically invalid: " + invalid[n] +
+                  " (`plumage geometry " + o.config + " --first " + std::to_string(n) + "` lists every problem)");
+    }
+  }
 
   FarFieldSet set;
   set.metadata = {{"producer", std::string("plumage ") + kVersionString},

@@ -243,3 +243,37 @@ TEST_CASE("plumage simulate --directions full", "[cli][compare]") {
   WARN("bem plug-in not built: the full-circle far field against the exact series was not checked");
 #endif
 }
+
+TEST_CASE("plumage simulate refuses a geometrically invalid instance and writes nothing", "[cli][compare]") {
+  // The hummingbird generator at a 0.3 um outline is outside its valid range: platelets cross each
+  // other and the outline. A full-wave solver would mesh that as given, so simulate must refuse it.
+  const fs::path dir = scratch("invalid");
+  fs::create_directories(dir);
+  std::ifstream in(source("configs/species/hummingbird.yaml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string yaml = text.str();
+  const std::string key = "\n    width_um: 40";
+  const auto at = yaml.find(key);
+  REQUIRE(at != std::string::npos);
+  yaml.replace(at, key.size(), "\n    width_um: 0.3");
+  const std::string corner = "\n    corner_um: 1.0";  // corners must fit in the width
+  const auto at_corner = yaml.find(corner);
+  REQUIRE(at_corner != std::string::npos);
+  yaml.replace(at_corner, corner.size(), "\n    corner_um: 0.03");
+  const fs::path config = dir / "narrow.yaml";
+  std::ofstream(config) << yaml;
+  const fs::path out = dir / "narrow.ffs";
+  const auto r = run("simulate " + config.string() + " --lambda-nm 550 --instances 1 --out " + out.string());
+  INFO(r.output);
+  CHECK(r.status != 0);
+  CHECK_THAT(r.output, Catch::Contains(config.string()) && Catch::Contains("instance 0 is geometrically invalid") &&
+                           Catch::Contains("boundaries cross"));
+  CHECK_FALSE(fs::exists(out));
+  // The shipped width is valid: the same command succeeds.
+  const auto ok = run("simulate " + source("configs/species/hummingbird.yaml") +
+                      " --lambda-nm 550 --instances 1 --out " + (dir / "ok.ffs").string());
+  INFO(ok.output);
+  CHECK(ok.status == 0);
+  CHECK(fs::exists(dir / "ok.ffs"));
+}
