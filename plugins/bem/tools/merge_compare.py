@@ -88,8 +88,12 @@ def main():
     colour = {m: cycle[i % len(cycle)] for i, m in enumerate(order)}
     for (th, ph) in incidents:
         handles = {}
-        fig, axes = plt.subplots(1, len(lams), figsize=(max(8.0, 5.2 * len(lams)), 4.2), squeeze=False)
-        for ax, lam in zip(axes[0], lams):
+        cols = min(len(lams), 4)  # wrap many wavelengths into rows of at most 4 panels
+        nrows = (len(lams) + cols - 1) // cols
+        fig, axes = plt.subplots(nrows, cols, figsize=(max(8.0, 5.2 * cols), 4.2 * nrows), squeeze=False)
+        for ax in list(axes.flat)[len(lams):]:
+            ax.axis("off")
+        for ax, lam in zip(axes.flat, lams):
             for m in order:
                 key = (m, th, ph, lam, "mean")
                 if key not in data:
@@ -101,7 +105,8 @@ def main():
             ax.set_title(f"lambda = {lam:g} nm")
             ax.set_xlabel("outgoing azimuth phi_o (deg)")
             ax.set_xlim(-90, 90)
-        axes[0][0].set_ylabel("reflectance per rad (Eq. 10), unpolarised")
+        for row in axes:
+            row[0].set_ylabel("reflectance per rad (Eq. 10), unpolarised")
         axes[0][-1].legend([handles[m] for m in order if m in handles], [m for m in order if m in handles], fontsize=7)
         fig.suptitle(f"{args.title} theta_i = {th:g} deg, phi_i = {ph:g} deg", fontsize=10)
         fig.tight_layout()
