@@ -35,6 +35,7 @@ struct BemBench {
   double gmres_tolerance = 1e-6;
   int azimuths = 20;  // fewer: a subset spread over the 20 (cos φ_i = 0.05 b), stated in the record
   int max_dense_unknowns = 20000;
+  std::vector<std::string> bem_params;  // further solver parameters, key=value (e.g. preconditioner=slabs)
   std::string record;
 };
 
@@ -120,6 +121,13 @@ Run run_width(AppContext& context, const BemBench& b, double width_um) {
     opts << "gmres_tolerance: " << b.gmres_tolerance << "\n";
     if (b.method == "hmatrix") opts << "aca_tolerance: " << b.aca_tolerance << "\n";
   }
+  for (const std::string& kv : b.bem_params) {
+    const auto eq = kv.find('=');
+    if (eq == std::string::npos || eq == 0) {
+      throw UsageError("bench bem: --bem-param '" + kv + "' is not key=value (e.g. preconditioner=slabs)");
+    }
+    opts << kv.substr(0, eq) << ": " << kv.substr(eq + 1) << "\n";
+  }
   const ConfigDocument doc = ConfigDocument::parse(opts.str(), "bench bem options");
   auto bem = context.registry().create_named<ScatteringSolver>("bem", doc.root(), context.registry().context());
   const auto t0 = std::chrono::steady_clock::now();
@@ -163,7 +171,11 @@ void bench_bem(AppContext& context, const BemBench& b) {
   std::ostringstream logs;
   for (double w : b.widths_um) {
     const Run r = run_width(context, b, w);
-    md << "| " << machine_description() << " | `plumage bench bem --ppw " << b.ppw << "` | " << today_iso() << " | " << w
+    std::ostringstream ppw;
+    ppw << b.ppw;
+    std::string command = "plumage bench bem --ppw " + ppw.str();
+    for (const std::string& kv : b.bem_params) command += " --bem-param " + kv;
+    md << "| " << machine_description() << " | `" << command << "` | " << today_iso() << " | " << w
        << " | " << (r.bem_s >= 0 ? std::to_string(r.bem_s) : std::string("-")) << " | "
        << (r.bem_s >= 0 ? std::to_string(r.bem_cpu_s) : std::string("-")) << " | " << r.approx_s << " | "
        << (r.bem_s >= 0 ? std::to_string(r.bem_s / r.approx_s) + "x" : std::string("-")) << " | " << r.rss_gb
@@ -194,6 +206,9 @@ void add_bench_bem_command(CLI::App& bench, AppContext& context) {
   cmd->add_option("--method", b->method, "BEM method: hmatrix | dense | gmres")->capture_default_str();
   cmd->add_option("--aca-tolerance", b->aca_tolerance, "BEM ACA tolerance (method hmatrix)")->capture_default_str();
   cmd->add_option("--gmres-tolerance", b->gmres_tolerance, "BEM GMRES relative residual")->capture_default_str();
+  cmd->add_option("--bem-param", b->bem_params,
+                  "further bem solver parameter key=value (repeatable; see `plumage plugins`), e.g. "
+                  "preconditioner=slabs");
   cmd->add_option("--record", b->record, "Markdown file to record the result in (e.g. docs/benchmarks.md)");
   cmd->callback([&context, b] { bench_bem(context, *b); });
 }

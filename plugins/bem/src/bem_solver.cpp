@@ -135,8 +135,16 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
       const Eigen::VectorXcd y = AX.leftCols(c).colPivHouseholderQr().solve(B.col(c));
       x = X.leftCols(c) * y;
     }
+    // Long solves say how far they are (at most every 30 s).
+    auto last = std::chrono::steady_clock::now();
+    const auto progress = [&](int it, double residual) {
+      if (seconds_since(last) < 30.0) return;
+      last = std::chrono::steady_clock::now();
+      std::fprintf(stderr, "bem: GMRES right-hand side %d of %d at %g nm: %d iterations, relative residual %.1e (goal %.0e)\n",
+                   static_cast<int>(c) + 1, static_cast<int>(B.cols()), lambda_nm, it, residual, options.gmres_tolerance);
+    };
     const GmresResult r = gmres(A, M, B.col(c), x, options.gmres_tolerance, options.gmres_restart,
-                                   options.gmres_max_iterations);
+                                   options.gmres_max_iterations, progress);
     if (!r.converged) {
       throw Error("bem: GMRES did not converge (relative residual " + std::to_string(r.relative_residual) +
                   " after " + std::to_string(r.iterations) + " iterations)");

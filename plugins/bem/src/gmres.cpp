@@ -9,7 +9,7 @@
 namespace plumage::bem {
 
 GmresResult gmres(const Op& A, const Op& M, const Eigen::VectorXcd& b, Eigen::VectorXcd& x, double tol, int m,
-                  int max_iterations) {
+                  int max_iterations, const std::function<void(int, double)>& progress) {
   using V = Eigen::VectorXcd;
   GmresResult res;
   const double bnorm = b.norm();
@@ -54,6 +54,7 @@ GmresResult gmres(const Op& A, const Op& M, const Eigen::VectorXcd& b, Eigen::Ve
       g[k + 1] = -std::conj(sn[k]) * g[k];
       g[k] = cs[k] * g[k];
       ++res.iterations;
+      if (progress) progress(res.iterations, std::abs(g[k + 1]) / bnorm);
       if (std::abs(g[k + 1]) <= tol * bnorm) {
         ++k;
         break;

@@ -22,8 +22,10 @@ struct GmresResult {
 
 // Solves A x = b to ‖b − A x‖ ≤ tol ‖b‖ (x holds the initial guess on entry). Stores the
 // restart + 1 Krylov vectors only (the preconditioner is applied once more to their combination).
+// `progress`, if set, is called after every iteration with (iterations so far, relative residual).
 GmresResult gmres(const Op& A, const Op& precondition, const Eigen::VectorXcd& b, Eigen::VectorXcd& x, double tol,
-                  int restart, int max_iterations);
+                  int restart, int max_iterations,
+                  const std::function<void(int, double)>& progress = {});
 
 // Block-Jacobi preconditioner: the unknowns of `group` consecutive mesh vertices (all four
 // families) form one diagonal block of Z, inverted by LU.
