@@ -35,7 +35,7 @@ struct BemBench {
   double gmres_tolerance = 1e-6;
   int azimuths = 20;  // fewer: a subset spread over the 20 (cos φ_i = 0.05 b), stated in the record
   int max_dense_unknowns = 20000;
-  std::vector<std::string> bem_params;  // further solver parameters, key=value (e.g. preconditioner=slabs)
+  std::vector<std::string> bem_params;  // further solver parameters, key=value (e.g. preconditioner=dense_single)
   std::string record;
 };
 
@@ -124,7 +124,7 @@ Run run_width(AppContext& context, const BemBench& b, double width_um) {
   for (const std::string& kv : b.bem_params) {
     const auto eq = kv.find('=');
     if (eq == std::string::npos || eq == 0) {
-      throw UsageError("bench bem: --bem-param '" + kv + "' is not key=value (e.g. preconditioner=slabs)");
+      throw UsageError("bench bem: --bem-param '" + kv + "' is not key=value (e.g. preconditioner=dense_single)");
     }
     opts << kv.substr(0, eq) << ": " << kv.substr(eq + 1) << "\n";
   }
@@ -208,7 +208,7 @@ void add_bench_bem_command(CLI::App& bench, AppContext& context) {
   cmd->add_option("--gmres-tolerance", b->gmres_tolerance, "BEM GMRES relative residual")->capture_default_str();
   cmd->add_option("--bem-param", b->bem_params,
                   "further bem solver parameter key=value (repeatable; see `plumage plugins`), e.g. "
-                  "preconditioner=slabs");
+                  "preconditioner=dense_single");
   cmd->add_option("--record", b->record, "Markdown file to record the result in (e.g. docs/benchmarks.md)");
   cmd->callback([&context, b] { bench_bem(context, *b); });
 }
