@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "bench_record.hpp"
+#include "segment_config.hpp"
 #include "commands.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
@@ -45,28 +46,6 @@ double peak_rss_gb() {
   return static_cast<double>(u.ru_maxrss) / (1024.0 * 1024.0);
 }
 
-// The species file with the outline width replaced (corners scaled down for narrow segments),
-// written to a temporary file next to nothing else (the config has no relative references).
-std::filesystem::path segment_config(const std::string& file, double width_um) {
-  std::ifstream in(file);
-  if (!in) throw UsageError("bench bem: cannot read " + file);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  const auto outline = s.find("\n  outline:");
-  if (outline == std::string::npos) throw UsageError("bench bem: " + file + " has no structure.outline");
-  std::string head = s.substr(0, outline), tail = s.substr(outline);
-  tail = std::regex_replace(tail, std::regex("(\n    width_um:)[^\n]*"), "$1 " + std::to_string(width_um),
-                            std::regex_constants::format_first_only);
-  const double corner = std::min(1.0, 0.1 * width_um);
-  tail = std::regex_replace(tail, std::regex("(\n    corner_um:)[^\n]*"), "$1 " + std::to_string(corner),
-                            std::regex_constants::format_first_only);
-  const auto path = std::filesystem::temp_directory_path() /
-                    ("plumage-bench-bem-" + std::to_string(getpid()) + ".yaml");
-  std::ofstream(path) << head << tail;
-  return path;
-}
-
 struct Run {
   double width_um = 0, approx_s = 0, bem_s = 0, bem_cpu_s = 0, rss_gb = 0;
   std::string status, log;  // log: the solver's own line (sizes, time split, iterations per RHS)
@@ -82,7 +61,7 @@ double process_cpu_seconds() {
 Run run_width(AppContext& context, const BemBench& b, double width_um) {
   Run r;
   r.width_um = width_um;
-  const auto path = segment_config(b.config, width_um);
+  const auto path = segment_config(b.config, width_um, "bench bem");
   const SpeciesConfig cfg = load_species_config(path, context.registry());
   std::filesystem::remove(path);
   const CrossSection cs = cfg.structure->generate(0);

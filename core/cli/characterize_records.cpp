@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "plumage/checksum.hpp"
+#include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 #include "plumage/fitter.hpp"
 #include "plumage/random.hpp"
@@ -218,6 +219,8 @@ FeatherMaterial assemble_material(const CharacterizeSettings& s, const std::vect
   m.label = s.label;
   m.config_hash = s.config_hash;
   m.fidelity = s.fidelity;
+  // The warnings of this process's run (fits, solver, reflection; plumage/diagnostics.hpp).
+  m.warnings = diagnostics().summary();
   m.sigma = s.sigma;
   m.grid = s.grid;
   m.lambda_nm = s.lambda_nm;

@@ -229,6 +229,7 @@ void add_bench_command(CLI::App& app, AppContext& context) {
   add_bench_fdtd_command(*bench, context);
   add_bench_bem_command(*bench, context);
   add_bench_render_command(*bench, context);
+  add_bench_ladder_command(*bench, context);
 
   auto ml = std::make_shared<MultilayerBench>();
   auto* cmd = bench->add_subcommand("multilayer", "Multilayer reflection: time per (point, wavelength)");

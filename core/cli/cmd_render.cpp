@@ -15,6 +15,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "plumage/diagnostics.hpp"
 #include "material_cache.hpp"
 #include "plumage/exr.hpp"
 #include "plumage/image.hpp"
@@ -60,7 +61,11 @@ void write_outputs(const RenderResult& r, const RenderSettings& s, double exposu
       spectral.lambda_max_nm = s.lambda_max_nm;
       spectral.values = r.spectral;
     }
-    write_exr(r.rgb, tmp_exr, s.spectral_bins > 0 ? &spectral : nullptr);
+    // The run's warnings (plumage/diagnostics.hpp: materials' own warnings included) travel with
+    // the image.
+    std::map<std::string, std::string> attributes;
+    if (!diagnostics().empty()) attributes["plumage:warnings"] = diagnostics().summary();
+    write_exr(r.rgb, tmp_exr, s.spectral_bins > 0 ? &spectral : nullptr, attributes);
     LinearImage scaled = r.rgb;
     for (RgbF& p : scaled.pixels()) p = {p.r * float(exposure), p.g * float(exposure), p.b * float(exposure)};
     write_png(to_display(scaled), tmp_png);

@@ -11,6 +11,7 @@
 
 #include "chart.hpp"
 #include "commands.hpp"
+#include "plumage/diagnostics.hpp"
 #include "grid_parse.hpp"
 #include "plumage/atomic_file.hpp"
 #include "plumage/colour.hpp"
@@ -274,6 +275,8 @@ void run(AppContext& context, const Options& o) {
       }
     }
   }
+  // The run's warnings (plumage/diagnostics.hpp) go into the file's header, one line.
+  if (!diagnostics().empty()) set.metadata["warnings"] = diagnostics().summary("; ");
   write_far_field_set(set, o.out);
   if (!context.quiet) std::cerr << "wrote " << o.out << "\n";
   if (!o.csv.empty()) {

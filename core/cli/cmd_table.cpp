@@ -15,6 +15,7 @@
 
 #include "chart.hpp"
 #include "commands.hpp"
+#include "plumage/diagnostics.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/error.hpp"
@@ -82,6 +83,11 @@ void build(AppContext& context, const BuildOptions& o) {
         bar->advance(done);
       });
   table.metadata().config_hash = fnv1a_hex(read_text(o.config));
+  // Every warning of the run (plumage/diagnostics.hpp), also those raised outside the builder.
+  if (!diagnostics().empty()) {
+    auto& notes = table.metadata().notes;
+    notes += (notes.empty() ? "" : "; ") + std::string("warnings: ") + diagnostics().summary("; ");
+  }
   table.save(o.out);
   std::filesystem::remove(partial);
   if (!context.quiet) {

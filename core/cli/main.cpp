@@ -3,6 +3,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 #include "plumage/version.hpp"
 
@@ -17,6 +18,10 @@ int main(int argc, char** argv) {
                  "beside the executable, the install prefix)");
   app.add_flag("-q,--quiet", context.quiet, "No progress or warnings on stderr");
   app.require_subcommand(1);
+  // Warnings (plumage/diagnostics.hpp) are echoed on stderr unless --quiet.
+  app.parse_complete_callback([&context] {
+    if (context.quiet) plumage::diagnostics().set_echo(nullptr);
+  });
 
   add_plugins_command(app, context);
   add_check_command(app, context);

@@ -1,6 +1,8 @@
 // Scene feather materials: cache lookup, else preview characterisation (material_cache.hpp).
 #include "material_cache.hpp"
 
+#include "plumage/diagnostics.hpp"
+
 #include <algorithm>
 #include <iomanip>
 #include <iostream>
@@ -44,6 +46,11 @@ std::optional<fs::path> find_cached(const fs::path& dir, const fs::path& canonic
 
 std::shared_ptr<const FeatherBsdf> load_bsdf(const fs::path& file, double transmission_albedo) {
   auto material = std::make_shared<const FeatherMaterial>(read_feather_material(file));
+  // A material characterised with warnings passes them on to what is rendered with it.
+  if (!material->warnings.empty()) {
+    std::string first = material->warnings.substr(0, material->warnings.find('\n'));
+    warn("material.warnings", file.string() + " was characterised with warnings (first: " + first + ")");
+  }
   FeatherBsdfOptions options;
   options.transmission_albedo = transmission_albedo;
   return std::make_shared<const FeatherBsdf>(material, options);

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <string>
 #include <vector>
 
 #include "plumage/image.hpp"
@@ -23,11 +25,16 @@ std::string spectral_channel_name(const SpectralChannels& s, int bin);
 // Float (32-bit) R, G, B and, when `spectral` has bins > 0, one float channel per bin. Encoded in
 // memory (ZIP compression), then a temporary file beside `path` renamed over it; missing parent
 // folders are created. Throws Error naming `path` for an empty image, a spectral buffer of the
-// wrong size, or any I/O failure (no file is left behind then).
+// wrong size, or any I/O failure (no file is left behind then). `attributes` become string
+// attributes of the header (e.g. "plumage:warnings").
 void write_exr(const LinearImage& rgb, const std::filesystem::path& path,
-               const SpectralChannels* spectral = nullptr);
+               const SpectralChannels* spectral = nullptr,
+               const std::map<std::string, std::string>& attributes = {});
 
 // Reads the R, G, B channels of an EXR (any pixel type) into linear sRGB; for tests and tools.
 LinearImage read_exr_rgb(const std::filesystem::path& path);
+
+// The string attributes of an EXR header (others are skipped); for tests and tools.
+std::map<std::string, std::string> read_exr_string_attributes(const std::filesystem::path& path);
 
 }  // namespace plumage

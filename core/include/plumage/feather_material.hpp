@@ -50,11 +50,13 @@ struct NoisePool {
 };
 
 struct FeatherMaterial {
-  static constexpr std::uint32_t kFormatVersion = 1;
+  // Version 2 added `warnings`; version 1 files are still read (with no warnings).
+  static constexpr std::uint32_t kFormatVersion = 2;
 
   std::string label;        // "species/variant"
   std::string config_hash;  // of the species config it was characterised from
   std::string fidelity;     // preview | production | …
+  std::string warnings;     // the producing run's warnings (plumage/diagnostics.hpp), one per line; "" if none
   double sigma = 0.04;      // D_y spread of both lobes (spec §4.3)
   double l0 = 0.0;          // correlation length at the reference unit (400 nm, normal), direction cosine
   int grid = 20;            // cos θ_i, cos φ_i nodes 0 … grid

@@ -7,6 +7,7 @@
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStdIO.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include <cstdio>
 #include <ostream>
@@ -24,7 +25,8 @@ std::string spectral_channel_name(const SpectralChannels& s, int bin) {
   return name;
 }
 
-void write_exr(const LinearImage& rgb, const std::filesystem::path& path, const SpectralChannels* spectral) {
+void write_exr(const LinearImage& rgb, const std::filesystem::path& path, const SpectralChannels* spectral,
+               const std::map<std::string, std::string>& attributes) {
   const int w = rgb.width(), h = rgb.height();
   if (w <= 0 || h <= 0) throw Error(path.string() + ": cannot write an empty image as OpenEXR");
   const int bins = spectral != nullptr ? spectral->bins : 0;
@@ -35,6 +37,7 @@ void write_exr(const LinearImage& rgb, const std::filesystem::path& path, const 
   try {
     Imf::Header header(w, h);
     header.compression() = Imf::ZIP_COMPRESSION;
+    for (const auto& [name, value] : attributes) header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer fb;
     const std::size_t px = sizeof(RgbF);
     char* base = const_cast<char*>(reinterpret_cast<const char*>(rgb.pixels().data()));
@@ -86,6 +89,19 @@ LinearImage read_exr_rgb(const std::filesystem::path& path) {
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
     return img;
+  } catch (const std::exception& e) {
+    throw Error(path.string() + ": cannot read OpenEXR (" + e.what() + ")");
+  }
+}
+
+std::map<std::string, std::string> read_exr_string_attributes(const std::filesystem::path& path) {
+  try {
+    Imf::InputFile file(path.string().c_str());
+    std::map<std::string, std::string> out;
+    for (auto it = file.header().begin(); it != file.header().end(); ++it) {
+      if (const auto* a = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) out[it.name()] = a->value();
+    }
+    return out;
   } catch (const std::exception& e) {
     throw Error(path.string() + ": cannot read OpenEXR (" + e.what() + ")");
   }

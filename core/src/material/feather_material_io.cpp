@@ -84,6 +84,7 @@ void write_feather_material(const std::filesystem::path& file, const FeatherMate
   w.put_string(m.label);
   w.put_string(m.config_hash);
   w.put_string(m.fidelity);
+  w.put_string(m.warnings);
   w.put<double>(m.sigma);
   w.put<double>(m.l0);
   w.put<double>(m.bin_width_nm);
@@ -110,7 +111,7 @@ FeatherMaterial read_feather_material(const std::filesystem::path& file) {
     throw Error(file.string() + ": not a plumage feather material (bad magic)");
   std::uint32_t version;
   std::memcpy(&version, data.data() + sizeof kMagic, 4);
-  if (version != FeatherMaterial::kFormatVersion)
+  if (version != FeatherMaterial::kFormatVersion && version != 1)
     throw Error(file.string() + ": feather material version " + std::to_string(version) + ", this build reads " +
                 std::to_string(FeatherMaterial::kFormatVersion));
   std::uint64_t stored;
@@ -125,6 +126,7 @@ FeatherMaterial read_feather_material(const std::filesystem::path& file) {
   m.label = r.get_string("label");
   m.config_hash = r.get_string("config_hash");
   m.fidelity = r.get_string("fidelity");
+  if (version >= 2) m.warnings = r.get_string("warnings");
   m.sigma = r.get<double>();
   m.l0 = r.get<double>();
   m.bin_width_nm = r.get<double>();

@@ -2,10 +2,23 @@
 //
 // Provides:
 //   scattering_solver "bem"   full-wave 2.5D multi-region PMCHWT (spec wave-simulation.md §6)
+//   accuracy_ladder "bem"     ppw ladder on cylinders against the exact series (ladder/, issue 9)
 #include "bem_solver.hpp"
+#include "plumage/accuracy_ladder.hpp"
 #include "plumage/plugin_export.hpp"
 
+namespace plumage::bem {
+std::vector<LadderPoint> run_bem_ladder(const AccuracyLadder::Options& options);  // ladder/bem_ladder.cpp
+}
+
 namespace {
+
+class BemLadder final : public plumage::AccuracyLadder {
+ public:
+  std::vector<plumage::LadderPoint> run(const Options& options) const override {
+    return plumage::bem::run_bem_ladder(options);
+  }
+};
 
 void register_bem(plumage::Registrar& registrar) {
   using plumage::bem::BemOptions;
@@ -72,6 +85,14 @@ void register_bem(plumage::Registrar& registrar) {
         o.max_dense_unknowns = static_cast<int>(p.integer_or("max_dense_unknowns", 20000, plumage::Limits::positive()));
         return std::make_unique<plumage::bem::BemSolver>(o);
       });
+  registrar.add<plumage::AccuracyLadder>(
+      {.kind = "",
+       .type = "bem",
+       .version = "0.1.0",
+       .summary = "accuracy ladder: 8-48 points per wavelength on keratin and coated cylinders against the "
+                  "exact series",
+       .params = {}},
+      [](const plumage::ParamView&, const plumage::PluginContext&) { return std::make_unique<BemLadder>(); });
 }
 
 }  // namespace

@@ -3,7 +3,9 @@
 // Provides:
 //   local_reflection "multilayer"         planar stack reflection (no parameters)
 //   structure_generator "layered_barbule" procedural barbules of types 1–4 (layered_barbule.cpp)
+//   accuracy_ladder "multilayer"          periodic stacks vs their closed form (issue 9)
 #include "layered_barbule.hpp"
+#include "multilayer_ladder.hpp"
 #include "multilayer_reflection.hpp"
 #include "plumage/plugin_export.hpp"
 
@@ -31,6 +33,16 @@ void register_multilayer(plumage::Registrar& registrar) {
        .params = LayeredBarbule::param_table()},
       [](const plumage::ParamView& params, const plumage::PluginContext&) {
         return std::make_unique<LayeredBarbule>(params);
+      });
+  registrar.add<plumage::AccuracyLadder>(
+      {.kind = "",
+       .type = "multilayer",
+       .version = "1.0.0",
+       .summary = "accuracy ladder: Bragg stacks of 1-64 periods against the closed-form periodic "
+                  "stack (Abeles matrix, Chebyshev power)",
+       .params = {}},
+      [](const plumage::ParamView&, const plumage::PluginContext&) {
+        return std::make_unique<plumage::multilayer::MultilayerLadder>();
       });
 }
 

@@ -2,10 +2,23 @@
 //
 // Provides:
 //   renderer "pathtracer"  hero-wavelength spectral path tracing on Embree 3 (NOTES.md)
+//   accuracy_ladder "pathtracer"  spp ladder against a converged render (ladder/, issue 9)
 #include "pathtracer.hpp"
+#include "plumage/accuracy_ladder.hpp"
 #include "plumage/plugin_export.hpp"
 
+namespace plumage::pathtracer {
+std::vector<LadderPoint> run_render_ladder(const AccuracyLadder::Options& options);  // ladder/render_ladder.cpp
+}
+
 namespace {
+
+class RenderLadder final : public plumage::AccuracyLadder {
+ public:
+  std::vector<plumage::LadderPoint> run(const Options& options) const override {
+    return plumage::pathtracer::run_render_ladder(options);
+  }
+};
 
 void register_pathtracer(plumage::Registrar& registrar) {
   registrar.add<plumage::Renderer>(
@@ -18,6 +31,13 @@ void register_pathtracer(plumage::Registrar& registrar) {
       [](const plumage::ParamView&, const plumage::PluginContext&) {
         return std::make_unique<plumage::pathtracer::PathTracer>();
       });
+  registrar.add<plumage::AccuracyLadder>(
+      {.kind = "",
+       .type = "pathtracer",
+       .version = "1.0.0",
+       .summary = "accuracy ladder: 1-1024 samples per pixel against a converged render (independent seed)",
+       .params = {}},
+      [](const plumage::ParamView&, const plumage::PluginContext&) { return std::make_unique<RenderLadder>(); });
 }
 
 }  // namespace

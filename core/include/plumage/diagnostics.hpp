@@ -1,0 +1,61 @@
+// Warnings about the numerical validity of a result (issue 9's stability campaign).
+//
+// A backend that produces a result it cannot vouch for — an FDTD run near its Courant limit, a
+// BEM mesh too coarse for the wavelength, a fit whose lobe has no energy to fit — still returns
+// the result, and raises a warning here. The warning is printed on stderr the first time its
+// code is raised in a run (unless echo is off: `plumage -q`), and every file the run writes
+// carries the run's warnings in its metadata (docs/formats.md), so a result is never silently
+// wrong. Warnings are collected per process; the CLI clears them at the start of a command.
+//
+// Codes are stable dotted identifiers "<backend>.<condition>" (e.g. "fdtd.courant",
+// "bem.mesh_coarse"); tests assert on codes, people read messages. A code raised many times is
+// kept once with its first message and a count, so a warning inside a per-entry loop costs one
+// mutex and a map lookup, not a growing list.
+#pragma once
+
+#include <cstddef>
+#include <iosfwd>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace plumage {
+
+struct Warning {
+  std::string code;
+  std::string message;     // of the first raise
+  std::size_t count = 1;   // raises of this code since the last clear()
+};
+
+class Diagnostics {
+ public:
+  // Thread-safe. The first raise of a code is echoed as "warning: <message> [<code>]".
+  void warn(std::string_view code, std::string message);
+
+  std::vector<Warning> warnings() const;  // in order of first raise
+  bool has(std::string_view code) const;
+  bool empty() const;
+  // "<code>: <message>" plus " (raised N times)" when N > 1, per code, each followed by
+  // `terminator`; "" when none. With terminator "; " it fits one metadata line.
+  std::string summary(std::string_view terminator = "\n") const;
+  void clear();
+  // Where first raises are echoed: &std::cerr by default, nullptr for none.
+  void set_echo(std::ostream* stream);
+
+  Diagnostics();
+  ~Diagnostics();
+  Diagnostics(const Diagnostics&) = delete;
+  Diagnostics& operator=(const Diagnostics&) = delete;
+
+ private:
+  struct State;
+  State* state_;
+};
+
+// The process's diagnostics.
+Diagnostics& diagnostics();
+
+// Shorthand for diagnostics().warn(code, message).
+void warn(std::string_view code, std::string message);
+
+}  // namespace plumage
