@@ -35,6 +35,7 @@
 
 #include <array>
 #include <complex>
+#include <exception>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -166,7 +167,10 @@ struct SimParams {
     bool source_cut_edge = false;
     double max_time = 400.0;      ///< hard cap of simulated time (µm/c)
     double dft_tol = 3e-4;        ///< stop when the scattered DFTs change by < tol (relative to the incident, per ~1 µm/c, twice)
-    double blowup_factor = 1e4;   ///< throw if field energy exceeds factor × source-phase maximum
+    /// Blow-up guard (checked every 10 steps): throw std::runtime_error if a field is non-finite,
+    /// if a main grid's energy exceeds factor × nx × its normalisation grid's energy so far, or
+    /// if a normalisation grid's energy exceeds factor × its own source-phase maximum.
+    double blowup_factor = 1e4;
     std::vector<double> smoothing_omegas;  ///< ω samples for fitting mixed cells (empty: band)
 };
 
@@ -190,10 +194,15 @@ struct RunStats {
     int steps = 0;
     double sim_time = 0.0;
     double dt = 0.0, h = 0.0;
+    double dt_limit = 0.0;        ///< stable_time_step of the run (dt / dt_limit = Courant factor used)
     int nz = 0, nx = 0;
     double wall_seconds = 0.0;
     double cpu_seconds = 0.0;     ///< CPU time of the calling thread (robust to machine load)
     bool converged = false;
+    /// Largest field energy of the main grids relative to nx × the energy their air-only
+    /// normalisation grids had reached by then (a few in stable runs; the blow-up guard throws
+    /// above blowup_factor).
+    double energy_ratio = 0.0;
 };
 
 struct Spectrum {
@@ -229,6 +238,11 @@ struct Job {
 std::vector<Spectrum> run_batch(const Cell& cell, const std::vector<Job>& jobs,
                                 const std::vector<double>& omegas, const SimParams& params,
                                 int threads = 2);
+/// As run_batch, but a job that throws leaves its Spectrum default and its exception in
+/// errors[j] (the other jobs' results are kept), so a caller can rerun only the failed ones.
+std::vector<Spectrum> run_batch_collect(const Cell& cell, const std::vector<Job>& jobs,
+                                        const std::vector<double>& omegas, const SimParams& params,
+                                        int threads, std::vector<std::exception_ptr>& errors);
 
 /// Incident-direction helpers (engine frame).
 void incident_basis(double sin_theta, double cos_theta, double sin_phi, double cos_phi,
