@@ -22,6 +22,7 @@
 #include "characterize_run.hpp"
 #include "chart.hpp"
 #include "commands.hpp"
+#include "plumage/diagnostics.hpp"
 #include "grid_parse.hpp"
 #include "mpi_session.hpp"
 #include "plumage/atomic_file.hpp"
@@ -122,6 +123,8 @@ void run(AppContext& context, const Options& o) {
     for (std::size_t g = 0; g < s.group_count(); ++g)
       if (static_cast<int>(g % static_cast<std::size_t>(parts)) == part && !done.count(g)) todo.push_back(g);
     const bool quiet = context.quiet || !root;
+    // Warnings are echoed by the root only; the other ranks' are gathered below.
+    if (!root) diagnostics().set_echo(nullptr);
     if (!quiet) {
       std::cerr << s.label << ": " << s.fidelity << ", " << s.lambda_nm.size() << " wavelengths x " << s.grid << " x "
                 << s.grid << " incident nodes, " << s.instances << " instances";
@@ -148,6 +151,18 @@ void run(AppContext& context, const Options& o) {
     std::string bytes;
     for (const auto& r : mine.records) bytes += serialize(r);
     const auto all = mpi.gather(bytes);
+    // Every rank's warnings reach the root, so the material carries the whole run's.
+    const auto rank_warnings = mpi.gather(diagnostics().summary());
+    if (root) {
+      for (std::size_t rank = 1; rank < rank_warnings.size(); ++rank) {
+        std::istringstream lines(rank_warnings[rank]);
+        for (std::string line; std::getline(lines, line);) {
+          const auto colon = line.find(": ");
+          if (colon == std::string::npos) continue;
+          warn(line.substr(0, colon), "rank " + std::to_string(rank) + ": " + line.substr(colon + 2));
+        }
+      }
+    }
     bool ok = true;
     if (root) {
       std::vector<GroupRecord> records;

@@ -13,6 +13,8 @@
 //   J = C B⁻¹.
 #pragma once
 
+#include "plumage/accuracy_ladder.hpp"
+
 #include <functional>
 #include <string>
 #include <utility>
@@ -58,5 +60,9 @@ JonesReflection jones_from_engine(const fdtd::FreqResult& f);
 ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const TableGrid& grid,
                             TableMetadata meta, const Options& options,
                             const TableBuilder::Progress& progress);
+
+// The plug-in's accuracy ladder (ladder/fdtd_ladder.cpp, issue 9); crystal_file: the crystal of
+// its second case.
+std::vector<LadderPoint> run_fdtd_ladder(const AccuracyLadder::Options& options, const std::string& crystal_file);
 
 }  // namespace plumage::fdtd_table
