@@ -84,9 +84,16 @@ void build(AppContext& context, const BuildOptions& o) {
       });
   table.metadata().config_hash = fnv1a_hex(read_text(o.config));
   // Every warning of the run (plumage/diagnostics.hpp), also those raised outside the builder.
-  if (!diagnostics().empty()) {
+  // Codes the builder already wrote into its notes ("WARNING: … [code]") are not repeated.
+  {
     auto& notes = table.metadata().notes;
-    notes += (notes.empty() ? "" : "; ") + std::string("warnings: ") + diagnostics().summary("; ");
+    std::string extra;
+    for (const Warning& w : diagnostics().warnings()) {
+      if (notes.find("[" + w.code + "]") != std::string::npos) continue;
+      extra += "; WARNING: " + w.message + (w.count > 1 ? " (raised " + std::to_string(w.count) + " times)" : "") +
+               " [" + w.code + "]";
+    }
+    if (!extra.empty()) notes += notes.empty() ? extra.substr(2) : extra;
   }
   table.save(o.out);
   std::filesystem::remove(partial);

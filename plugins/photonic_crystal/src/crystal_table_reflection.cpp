@@ -9,6 +9,7 @@
 
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
+#include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/table_builder.hpp"
@@ -65,6 +66,23 @@ std::vector<ParamSpec> CrystalTableReflection::param_table() {
   };
 }
 
+namespace {
+
+// A table built with warnings ("WARNING: <text> [<code>]" items in its notes, written by the
+// builder) passes them on to every run that uses it, so a material or image made with it
+// carries them too (issue 9).
+void raise_table_warnings(const ReflectionTable& table, const std::string& file) {
+  const std::string& notes = table.metadata().notes;
+  for (std::size_t at = notes.find("WARNING: "); at != std::string::npos; at = notes.find("WARNING: ", at + 1)) {
+    const std::size_t open = notes.find(" [", at), close = notes.find(']', at);
+    const std::size_t next = notes.find("; WARNING: ", at + 1);
+    if (open == std::string::npos || close == std::string::npos || (next != std::string::npos && close > next)) continue;
+    warn(notes.substr(open + 2, close - open - 2), "table " + file + ": " + notes.substr(at + 9, open - at - 9));
+  }
+}
+
+}  // namespace
+
 CrystalTableReflection::CrystalTableReflection(const ParamView& params, const PluginContext& context) {
   const bool has_table = params.has("table"), has_crystal = params.has("crystal");
   if (has_table == has_crystal)
@@ -73,6 +91,7 @@ CrystalTableReflection::CrystalTableReflection(const ParamView& params, const Pl
     const fs::path file = resolve(context, params.text("table"));
     table_ = ReflectionTable::load(file);
     table_file_ = file.string();
+    raise_table_warnings(table_, table_file_);
     std::call_once(ready_, [] {});
     return;
   }
@@ -98,6 +117,7 @@ CrystalTableReflection::CrystalTableReflection(const ParamView& params, const Pl
   grid_ = TableGrid::uniform(lo, hi, nl, nt, np);
   if (fs::exists(table_file_)) {
     table_ = ReflectionTable::load(table_file_);
+    raise_table_warnings(table_, table_file_);
     std::call_once(ready_, [] {});
     return;
   }
@@ -132,6 +152,7 @@ void CrystalTableReflection::build_or_load() const {
     const fs::path file = preview ? preview_file_ : table_file_;
     if (fs::exists(file)) {
       table_ = ReflectionTable::load(file);
+      raise_table_warnings(table_, file.string());
       return;
     }
     const TableGrid grid = preview ? TableGrid::uniform(grid_.lambda_nm.front(), grid_.lambda_nm.back(), 4, 5, 5) : grid_;

@@ -4,8 +4,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iostream>
+#include <sstream>
 
 #include "plumage/config_document.hpp"
+#include "plumage/diagnostics.hpp"
 #include "plumage/local_reflection.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/reflection_table.hpp"
@@ -44,6 +47,36 @@ TEST_CASE("photonic_crystal reflection reads a table file", "[photonic-crystal][
   CHECK(out[2].ss == Complex(-1.0, 0.0));      // grazing
   CHECK(out[2].pp == Complex(-1.0, 0.0));
   CHECK(out[3].ss == Complex(0.0, 0.0));       // back-facing
+  fs::remove_all(dir);
+}
+
+TEST_CASE("photonic_crystal passes a table's warnings on to the run that uses it", "[photonic-crystal][table][warnings]") {
+  TableGrid g = TableGrid::uniform(400, 700, 2, 2, 2);
+  // Notes as fdtd_periodic writes them: plain counts, then "WARNING: <text> [<code>]" items.
+  ReflectionTable t(g, {"synthetic", 190.0, "", 10.0, "test",
+                        "fdtd runs: 8; entries continued to the grazing limit: 0 of 8; WARNING: 3 of 8 fdtd runs "
+                        "stopped at the time cap [fdtd.not_converged]; WARNING: 2 samples with other propagating "
+                        "diffraction orders [fdtd.other_orders]"});
+  const fs::path dir = fs::temp_directory_path() / "plumage_test_pc_table_warnings";
+  fs::create_directories(dir);
+  t.save(dir / "warned.plt");
+  PluginRegistry registry;
+  registry.load_library(fs::path(PLUMAGE_TEST_PLUGIN_DIR) / "libplumage_photonic_crystal.so");
+  PluginContext ctx = registry.context();
+  ctx.config_dir = dir;
+  diagnostics().clear();
+  std::ostringstream echo;
+  diagnostics().set_echo(&echo);
+  const auto doc = ConfigDocument::parse("table: warned.plt\n", "inline");
+  auto model = registry.create_named<LocalReflection>("photonic_crystal", doc.root(), ctx);
+  const auto list = diagnostics().warnings();
+  diagnostics().set_echo(&std::cerr);
+  diagnostics().clear();
+  REQUIRE(list.size() == 2);
+  CHECK(list[0].code == "fdtd.not_converged");
+  CHECK(list[0].message == "table " + (dir / "warned.plt").string() + ": 3 of 8 fdtd runs stopped at the time cap");
+  CHECK(list[1].code == "fdtd.other_orders");
+  CHECK(echo.str().find("[fdtd.other_orders]") != std::string::npos);
   fs::remove_all(dir);
 }
 
