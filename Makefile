@@ -41,6 +41,7 @@ validate: build
 bench: build
 	$(PLUMAGE) bench multilayer --record docs/benchmarks.md
 	$(PLUMAGE) bench simulate --record docs/benchmarks.md
+	$(PLUMAGE) bench ladder --record docs/benchmarks.md --chart-copy docs/img/ladder.png
 
 clean:
 	rm -rf $(BUILD)
