@@ -113,6 +113,20 @@ ReflectionTable load_input_table(const std::string& file) {
   }
 }
 
+// The table's notes (warnings included) inside a JSON string.
+std::string json_escape(const std::string& text) {
+  std::string out;
+  for (char ch : text) {
+    if (ch == '"' || ch == '\\') out += '\\';
+    if (static_cast<unsigned char>(ch) < 0x20) {
+      out += ' ';
+      continue;
+    }
+    out += ch;
+  }
+  return out;
+}
+
 void query(const QueryOptions& o) {
   const ReflectionTable t = load_input_table(o.file);
   const JonesReflection r = t.query(o.lambda_nm, deg_to_rad(o.theta_deg), deg_to_rad(o.phi_deg));
@@ -127,12 +141,14 @@ void query(const QueryOptions& o) {
               << "\", \"lambda_nm\": " << o.lambda_nm << ", \"theta_deg\": " << o.theta_deg
               << ", \"phi_deg\": " << o.phi_deg << ", \"jones\": {\"ss\": [" << c(r.ss) << "], \"sp\": ["
               << c(r.sp) << "], \"ps\": [" << c(r.ps) << "], \"pp\": [" << c(r.pp)
-              << "]}, \"R_s\": " << Rs << ", \"R_p\": " << Rp << "}\n";
+              << "]}, \"R_s\": " << Rs << ", \"R_p\": " << Rp << ", \"notes\": \"" << json_escape(t.metadata().notes)
+              << "\"}\n";
   } else {
     std::cout << t.metadata().crystal << " at " << o.lambda_nm << " nm, theta " << o.theta_deg
               << " deg, phi_local " << o.phi_deg << " deg (Jones, (s, p) basis)\n"
               << "  ss = " << c(r.ss) << "\n  sp = " << c(r.sp) << "\n  ps = " << c(r.ps)
-              << "\n  pp = " << c(r.pp) << "\n  R_s = " << Rs << "  R_p = " << Rp << "\n";
+              << "\n  pp = " << c(r.pp) << "\n  R_s = " << Rs << "  R_p = " << Rp << "\n"
+              << "  notes: " << t.metadata().notes << "\n";
   }
 }
 

@@ -93,6 +93,30 @@ TEST_CASE("table build, query as json and plot a PNG", "[cli][table]") {
   CHECK(fs::file_size(png) > 1000);
 }
 
+TEST_CASE("table build: grazing entries are reported on stderr and in the table's notes", "[cli][table][warnings]") {
+  // cos φ_local = 0.2 is below kz_min = 0.25: that entry is continued, not simulated (issue 9).
+  const fs::path crystal = tiny_crystal();
+  const fs::path out = scratch() / "grazing.plt";
+  fs::remove(out);
+  auto r = run("table build " + crystal.string() +
+               " --fidelity preview --n-lambda 1 --lambda-min 550 --lambda-max 550 --n-theta 1 --n-phi 5 --out " +
+               out.string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("warning: ") && Catch::Contains("[fdtd.grazing_continued]"));
+  r = run("table query " + out.string() + " --lambda-nm 550 --theta-deg 0 --phi-deg 0 --format json");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("\"notes\": \"") && Catch::Contains("[fdtd.grazing_continued]"));
+  // -q silences the echo; the notes still carry it.
+  fs::remove(out);
+  r = run("-q table build " + crystal.string() +
+          " --fidelity preview --n-lambda 1 --lambda-min 550 --lambda-max 550 --n-theta 1 --n-phi 5 --out " + out.string());
+  REQUIRE(r.status == 0);
+  CHECK(r.output.find("[fdtd.grazing_continued]") == std::string::npos);
+  r = run("table query " + out.string() + " --lambda-nm 550 --theta-deg 0 --phi-deg 0");
+  CHECK_THAT(r.output, Catch::Contains("notes: ") && Catch::Contains("[fdtd.grazing_continued]"));
+}
+
 TEST_CASE("an interrupted table build resumes and redoes only the missing runs", "[cli][table]") {
   const fs::path crystal = tiny_crystal();
   const fs::path fresh = scratch() / "fresh.plt", out = scratch() / "resumed.plt";
