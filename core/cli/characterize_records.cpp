@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <sstream>
 
 #include "plumage/checksum.hpp"
@@ -26,7 +27,9 @@ constexpr char kJournalMagic[] = "plumage-characterize-journal 1";
 constexpr std::uint32_t kRecordMagic = 0x524d4c50;  // "PLMR"
 // Bumped whenever the simulation or fitting code changes what a record holds, so that a journal
 // or shard from older code is never mixed with new records.
-constexpr int kFitRevision = 2;  // 2: the factored far-field kernel (records differ from 1 by rounding)
+// 3: records carry their warning codes; fits normalise the pattern's scale and give a zero lobe
+// for near-zero energy (issue 9).
+constexpr int kFitRevision = 3;
 
 template <class T>
 void put(std::string& s, T v) {
@@ -109,6 +112,11 @@ std::string serialize(const GroupRecord& r) {
   }
   put<std::uint32_t>(body, static_cast<std::uint32_t>(r.autocorrelation.size()));
   for (double v : r.autocorrelation) put<double>(body, v);
+  put<std::uint32_t>(body, static_cast<std::uint32_t>(r.warnings.size()));
+  for (const std::string& code : r.warnings) {
+    put<std::uint32_t>(body, static_cast<std::uint32_t>(code.size()));
+    body += code;
+  }
   std::string out;
   put<std::uint32_t>(out, kRecordMagic);
   put<std::uint64_t>(out, body.size());
@@ -157,6 +165,16 @@ JournalContents read_journal(const std::filesystem::path& file) {
       double v = 0;
       ok = get(data, p, end, v);
       r.autocorrelation.push_back(v);
+    }
+    std::uint32_t ncodes = 0;
+    ok = ok && get(data, p, end, ncodes) && ncodes < 10000;
+    for (std::uint32_t k = 0; ok && k < ncodes; ++k) {
+      std::uint32_t len = 0;
+      ok = get(data, p, end, len) && len <= end - p;
+      if (ok) {
+        r.warnings.emplace_back(data, p, len);
+        p += len;
+      }
     }
     if (!ok || p != end) break;
     j.records.push_back(std::move(r));
@@ -213,14 +231,34 @@ std::vector<const GroupRecord*> ordered(const CharacterizeSettings& s, const std
 
 }  // namespace
 
+// The material's warnings from its records, so the same for one process, shards, MPI ranks and
+// resumed runs: per code (sorted), in how many work groups it was raised and the first group (in
+// group order). The messages with their numbers went to the computing processes' stderr.
+std::string material_warnings(const CharacterizeSettings& s, const std::vector<const GroupRecord*>& groups) {
+  std::map<std::string, std::pair<std::size_t, const GroupRecord*>> by_code;
+  for (const GroupRecord* r : groups) {
+    for (const std::string& code : r->warnings) {
+      auto& [count, first] = by_code[code];
+      ++count;
+      if (!first || std::make_pair(r->w, r->a) < std::make_pair(first->w, first->a)) first = r;
+    }
+  }
+  std::ostringstream out;
+  for (const auto& [code, entry] : by_code) {
+    out << code << ": raised while computing " << entry.first << " of " << groups.size()
+        << " work groups, first at lambda = " << s.lambda_nm[entry.second->w] << " nm, cos theta_i = "
+        << entry.second->a << "/" << s.grid << "\n";
+  }
+  return out.str();
+}
+
 FeatherMaterial assemble_material(const CharacterizeSettings& s, const std::vector<GroupRecord>& records) {
   const auto groups = ordered(s, records);
   FeatherMaterial m;
   m.label = s.label;
   m.config_hash = s.config_hash;
   m.fidelity = s.fidelity;
-  // The warnings of this process's run (fits, solver, reflection; plumage/diagnostics.hpp).
-  m.warnings = diagnostics().summary();
+  m.warnings = material_warnings(s, groups);
   m.sigma = s.sigma;
   m.grid = s.grid;
   m.lambda_nm = s.lambda_nm;

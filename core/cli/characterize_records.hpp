@@ -24,6 +24,11 @@ struct GroupRecord {
   std::uint32_t w = 0, a = 0;          // λ bin, cos θ_i = a / G
   std::vector<UnitRecord> units;       // b = 1 … G
   std::vector<double> autocorrelation; // reference group only (first bin, a = G: unit b = G)
+  // Warning codes (plumage/diagnostics.hpp) raised while this group was computed (and while the
+  // process that computed it prepared its instances), sorted. Kept in the record so that a
+  // material merged from shards, MPI ranks or a resumed journal carries exactly the warnings of
+  // a single run, independent of thread scheduling.
+  std::vector<std::string> warnings;
 };
 
 // What a characterisation depends on; two runs (or shards) combine only if these agree.

@@ -2,6 +2,8 @@
 // `plumage render`, which characterises a missing material in-process.
 #include "characterize_run.hpp"
 
+#include "plumage/diagnostics.hpp"
+
 #include <tbb/parallel_for.h>
 
 #include <chrono>
@@ -9,6 +11,7 @@
 #include <ctime>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <set>
 
 #include "app_context.hpp"
@@ -129,6 +132,23 @@ JournalResume read_journal_resume(const std::filesystem::path& journal, const Ch
 void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, const std::vector<std::size_t>& todo,
                     const std::filesystem::path& journal, std::uintmax_t valid_bytes, bool quiet,
                     std::vector<DiagnosticUnit>* diagnostics) {
+  // Warning codes are attributed to groups by their raise counts before and after each group
+  // (groups run one after another); those raised while preparing the instances go to every group
+  // this process computes.
+  auto raise_counts = [] {
+    std::map<std::string, std::size_t> counts;
+    for (const Warning& w : plumage::diagnostics().warnings()) counts[w.code] = w.count;
+    return counts;
+  };
+  auto raised_since = [&](const std::map<std::string, std::size_t>& before) {
+    std::set<std::string> codes;
+    for (const auto& [code, count] : raise_counts()) {
+      const auto it = before.find(code);
+      if (it == before.end() || it->second < count) codes.insert(code);
+    }
+    return codes;
+  };
+  const auto before_prepare = raise_counts();
   std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepared(static_cast<std::size_t>(s.instances));
   if (!todo.empty()) {
     tbb::parallel_for(0, s.instances, [&](int n) {
@@ -136,11 +156,17 @@ void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, 
       prepared[n] = config.solver->prepare(cs, config.reflection);
     });
   }
+  const std::set<std::string> prepare_codes = raised_since(before_prepare);
   JournalWriter writer(journal, s, valid_bytes);
   Progress progress("work units", todo.size() * static_cast<std::size_t>(s.grid), quiet);
   std::size_t count = 0;
   for (std::size_t g : todo) {
-    writer.append(run_group(config, s, prepared, g, diagnostics));
+    const auto before = raise_counts();
+    GroupRecord record = run_group(config, s, prepared, g, diagnostics);
+    std::set<std::string> codes = raised_since(before);
+    codes.insert(prepare_codes.begin(), prepare_codes.end());
+    record.warnings.assign(codes.begin(), codes.end());
+    writer.append(record);
     progress.advance(++count * static_cast<std::size_t>(s.grid));
   }
 }

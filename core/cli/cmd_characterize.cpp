@@ -151,7 +151,8 @@ void run(AppContext& context, const Options& o) {
     std::string bytes;
     for (const auto& r : mine.records) bytes += serialize(r);
     const auto all = mpi.gather(bytes);
-    // Every rank's warnings reach the root, so the material carries the whole run's.
+    // Every rank's warnings reach the root's stderr (the material takes its warnings from the
+    // records, which carry their codes).
     const auto rank_warnings = mpi.gather(diagnostics().summary());
     if (root) {
       for (std::size_t rank = 1; rank < rank_warnings.size(); ++rank) {

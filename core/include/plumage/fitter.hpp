@@ -3,9 +3,10 @@
 //
 // A work unit is (λ, cos θ_i = a/G, cos φ_i = b/G) with the far fields of every instance, at the
 // pattern directions (spec §0.4, first `pattern_count` entries) followed by the on-cone
-// projected directions (`projected_directions`). fit_unit() is a pure function of its input:
+// projected directions (`projected_directions`). fit_unit() is a function of its input alone:
 // single-threaded, deterministic (coarse grid search, then Ceres with one thread), so shards,
-// MPI ranks and single runs produce identical records.
+// MPI ranks and single runs produce identical records. Besides its result it may raise the
+// warnings fit.near_zero_energy and fit.two_lobes (plumage/diagnostics.hpp, issue 9).
 #pragma once
 
 #include <cstdint>

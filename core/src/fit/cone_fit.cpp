@@ -163,12 +163,27 @@ std::vector<double> cone_lobe_shape(double theta_i_rad, double m, double phi_c_r
 }
 
 ConeFit fit_cone_lobe(double theta_i_rad, double phi_i_rad, std::span<const double> phi_o_rad,
-                      std::span<const double> pattern) {
+                      std::span<const double> raw_pattern) {
   ConeFit out;
+  out.phi_c_rad = std::clamp(phi_i_rad, -kMaxPhi, kMaxPhi);
+  // The fit is scale-free (energy matching), but Ceres' gradient tolerance is absolute and
+  // Σu² underflows: unnormalised, a lobe scaled by 1e-12 stopped at the coarse grid (m off by
+  // 11 %) and one scaled by 1e-200 returned m = 0.001, φ_c = −88°, relative L2 NaN (issue 9,
+  // measured). The pattern is therefore divided by its largest sample first; every scale then
+  // gives the same (m, φ_c) down to subnormal samples.
+  double peak = 0.0;
+  for (double u : raw_pattern) peak = std::max(peak, u);
+  if (!(peak > 0.0) || !std::isfinite(peak)) {  // nothing reflected: keep the specular direction, a mid roughness
+    out.m = 0.1;
+    out.rel_l2 = 0.0;
+    return out;
+  }
+  std::vector<double> normalised(raw_pattern.size());
+  for (std::size_t k = 0; k < normalised.size(); ++k) normalised[k] = raw_pattern[k] / peak;
+  const std::span<const double> pattern(normalised);
   double sum_u = 0, norm_u = 0;
   for (double u : pattern) sum_u += u, norm_u += u * u;
-  out.phi_c_rad = std::clamp(phi_i_rad, -kMaxPhi, kMaxPhi);
-  if (!(sum_u > 0.0)) {  // nothing reflected: keep the specular direction, a mid roughness
+  if (!(sum_u > 0.0)) {
     out.m = 0.1;
     out.rel_l2 = 0.0;
     return out;

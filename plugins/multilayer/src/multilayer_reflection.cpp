@@ -1,9 +1,12 @@
 #include "multilayer_reflection.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "plumage/error.hpp"
+#include "plumage/layer_profile.hpp"
 #include "stack_solver.hpp"
 
 namespace plumage::multilayer {
@@ -56,16 +59,49 @@ const LayerProfile& profile_of(const LocalReflection::Request& r) {
   return *r.profile;
 }
 
+// An input the recursion refuses (stack_solver.hpp) is reported with the request's stack and
+// wavelength, so that a bad profile built by a solver can be traced.
+[[noreturn]] void rethrow_with_context(const Error& e, const LocalReflection::Request& r) {
+  char b[64];
+  std::snprintf(b, sizeof b, " (lambda = %.6g nm, stack '", r.lambda_nm);
+  std::string stack = describe(*r.profile);
+  if (stack.size() > 300) stack = stack.substr(0, 297) + "...";
+  throw Error(std::string(e.what()) + b + stack + "')");
+}
+
 }  // namespace
 
 void MultilayerReflection::reflect(std::span<const Request> requests,
                                    std::span<JonesReflection> out) const {
   if (out.size() < requests.size()) throw Error("multilayer: output span shorter than requests");
   IndexAtWavelength index_of;
+  std::vector<Complex> index;
+  std::vector<double> thickness;
+  // One request through the scalar recursion.
+  auto scalar = [&](const Request& r) {
+    const LayerProfile& p = *r.profile;
+    const std::size_t layers = p.layers.size();
+    index_of.set_wavelength(r.lambda_nm);
+    index.resize(layers + 2);
+    thickness.resize(layers);
+    index.front() = index_of(p.ambient);
+    for (std::size_t j = 0; j < layers; ++j) {
+      index[j + 1] = index_of(p.layers[j].material);
+      thickness[j] = p.layers[j].thickness_nm;
+    }
+    index.back() = index_of(p.substrate);
+    try {
+      const StackReflection s =
+          reflect_stack(index, thickness, r.lambda_nm, ambient_sin2(index.front(), r.incidence, p));
+      return JonesReflection{s.r_s, {0.0, 0.0}, {0.0, 0.0}, s.r_p};
+    } catch (const Error& e) {
+      rethrow_with_context(e, r);
+    }
+  };
   // Lane buffers: kLanes requests whose stacks have the same layer count go through the
   // vectorised recursion together; the rest through the scalar one.
-  std::vector<Complex> eps, index;
-  std::vector<double> thickness;
+  std::vector<Complex> eps;
+  std::vector<double> lane_thickness;
   double k0[kLanes], sin2[kLanes];
   StackReflection lane_out[kLanes];
 
@@ -79,7 +115,7 @@ void MultilayerReflection::reflect(std::span<const Request> requests,
     }
     if (run == kLanes) {
       eps.resize((layers + 2) * kLanes);
-      thickness.resize(layers * kLanes);
+      lane_thickness.resize(layers * kLanes);
       for (std::size_t l = 0; l < kLanes; ++l) {
         const Request& r = requests[i + l];
         const LayerProfile& p = *r.profile;
@@ -89,34 +125,25 @@ void MultilayerReflection::reflect(std::span<const Request> requests,
         for (std::size_t j = 0; j < layers; ++j) {
           const Complex n = index_of(p.layers[j].material);
           eps[(j + 1) * kLanes + l] = n * n;
-          thickness[j * kLanes + l] = p.layers[j].thickness_nm;
+          lane_thickness[j * kLanes + l] = p.layers[j].thickness_nm;
         }
         const Complex sub = index_of(p.substrate);
         eps[(layers + 1) * kLanes + l] = sub * sub;
         k0[l] = 2.0 * 3.14159265358979323846 / r.lambda_nm;
         sin2[l] = ambient_sin2(ambient, r.incidence, p);
       }
-      reflect_stack_lanes(static_cast<int>(layers), eps.data(), thickness.data(), k0, sin2, lane_out);
+      try {
+        reflect_stack_lanes(static_cast<int>(layers), eps.data(), lane_thickness.data(), k0, sin2, lane_out);
+      } catch (const Error&) {
+        // Refused input: the scalar path names the request (and throws for it).
+        for (std::size_t l = 0; l < kLanes; ++l) out[i + l] = scalar(requests[i + l]);
+        throw;
+      }
       for (std::size_t l = 0; l < kLanes; ++l) {
         out[i + l] = JonesReflection{lane_out[l].r_s, {0.0, 0.0}, {0.0, 0.0}, lane_out[l].r_p};
       }
     } else {
-      for (std::size_t l = 0; l < run; ++l) {
-        const Request& r = requests[i + l];
-        const LayerProfile& p = *r.profile;
-        index_of.set_wavelength(r.lambda_nm);
-        index.resize(layers + 2);
-        thickness.resize(layers);
-        index.front() = index_of(p.ambient);
-        for (std::size_t j = 0; j < layers; ++j) {
-          index[j + 1] = index_of(p.layers[j].material);
-          thickness[j] = p.layers[j].thickness_nm;
-        }
-        index.back() = index_of(p.substrate);
-        const StackReflection s =
-            reflect_stack(index, thickness, r.lambda_nm, ambient_sin2(index.front(), r.incidence, p));
-        out[i + l] = JonesReflection{s.r_s, {0.0, 0.0}, {0.0, 0.0}, s.r_p};
-      }
+      for (std::size_t l = 0; l < run; ++l) out[i + l] = scalar(requests[i + l]);
     }
     i += run;
   }

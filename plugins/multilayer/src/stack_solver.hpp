@@ -10,8 +10,9 @@
 //   Γ ← (r + Γ e^{2iδ}) / (1 + r Γ e^{2iδ}),  δ_j = k0 q_j d_j.
 // Every quantity in the recursion is bounded for passive media (|e^{2iδ}| ≤ 1, |Γ| ≤ 1 before
 // the top interface), so unlike a product of 2×2 transfer matrices it cannot overflow: it is the
-// scattering-matrix formulation specialised to a layered medium. Fusing the Fresnel division
-// into the recursion leaves one complex division per interface and polarization.
+// scattering-matrix formulation specialised to a layered medium. It is evaluated on the pair
+// (1 + Γe^{2iδ}, 1 − Γe^{2iδ}) with the Fresnel division fused in (one reciprocal per interface
+// and polarization), which stays accurate where some q_j is small (issue 9, stack_solver.cpp).
 #pragma once
 
 #include <complex>
@@ -33,6 +34,23 @@ struct StackResponse {
   double T_s = 0, T_p = 0;  // transmitted power fractions (0 under total internal reflection)
 };
 
+// Inputs (issue 9). The recursion takes passive media only, Im ε ≥ 0 with ε = n² (a gain medium,
+// Im n < 0 under e^{−iωt}, has no passive reflection, and the branch Im q ≥ 0 silently gave
+// R = 18), |n| ∈ [1e-20, 1e20] (within it every product and |D|² of the recursion stays in
+// range; before issue 9 |n| ≈ 1e100 or a 1e-160 substrate gave NaN, and physical indices lie
+// within [1e-3, 1e3]), a lossless ambient, finite non-negative thicknesses (zero is allowed: no
+// layer), a positive finite wavelength and a finite sin²α ≥ 0. Anything else throws
+// plumage::Error naming the medium ("layer 2: thickness -5 nm is negative"); nothing is
+// returned that the inputs cannot support.
+// Bounds on |ε|² = |n|⁴, with 1e-9 slack so that |n| = 1e±20 itself (whose square may round
+// beyond 1e±40) is accepted.
+inline constexpr double kMinPermittivity2 = 1e-80 * (1.0 - 1e-9);
+inline constexpr double kMaxPermittivity2 = 1e80 * (1.0 + 1e-9);
+
+// Small normal wavenumbers (a layer near its critical angle, an index near zero) keep full
+// precision: the reduction carries 1 ± Γe^{2iδ} instead of Γ (stack_solver.cpp); measured in
+// tests/test_stack_extremes.cpp.
+
 // index: n_0 … n_{L+1} (size L+2); thickness_nm: d_1 … d_L (size L). sin2_alpha is sin²α with
 // α the angle of incidence in the ambient medium (its index enters via n_0² sin²θ_0, so for a
 // non-air ambient pass n_0² sin²θ_0).
@@ -53,5 +71,10 @@ inline constexpr int kLanes = 4;
 // it; agrees with reflect_stack to rounding (tests check 1e-13).
 void reflect_stack_lanes(int layers, const Complex* eps, const double* thickness_nm,
                          const double* k0_per_nm, const double* sin2_alpha, StackReflection* out);
+
+// The input checks of reflect_stack_lanes (above, in ε): throws plumage::Error naming the lane
+// and medium of the first input the recursion cannot take; returns when all are valid.
+void check_stack_lanes(int layers, const Complex* eps, const double* thickness_nm, const double* k0_per_nm,
+                       const double* sin2_alpha);
 
 }  // namespace plumage::multilayer
