@@ -9,6 +9,7 @@
 #include <functional>
 #include <fstream>
 
+#include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 #include "radiation.hpp"
 
@@ -18,7 +19,42 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
+
+std::string format(const char* fmt, auto... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, fmt, args...);
+  return buf;
+}
 }  // namespace
+
+void check_mesh(const Geometry& geometry, const Mesh& mesh, double lambda_nm, const BemOptions& options) {
+  if (options.warn_min_ppw > 0.0) {
+    const MeshResolution r = mesh_resolution(mesh, geometry, lambda_nm, options.warn_min_ppw);
+    if (r.min_ppw < options.warn_min_ppw) {
+      warn("bem.mesh_coarse",
+           format("bem: mesh at %g nm has %.1f points per wavelength in %s (segments of %.3g nm; %.0f %% of the "
+                  "interface length below %g ppw, where the far field's error passed 1e-2 on the validation "
+                  "cylinders); raise points_per_wavelength",
+                  lambda_nm, r.min_ppw, geometry.domain_name[r.domain].c_str(), r.h_nm, 100.0 * r.length_fraction,
+                  options.warn_min_ppw));
+    }
+  }
+  if (options.warn_gap_ratio > 0.0) {
+    const CloseApproach c = closest_approach(mesh, options.warn_gap_ratio);
+    if (c.pairs > 0) {
+      const Segment& A = mesh.segments[c.seg_a];
+      const Segment& B = mesh.segments[c.seg_b];
+      const Vec2 at = 0.5 * (A.p0 + A.p1);
+      warn("bem.near_touching",
+           format("bem: boundary %s|%s comes within %.3g nm of boundary %s|%s near (%.1f, %.1f) nm, segment length "
+                  "%.3g nm (gap/h = %.1e < %g; %d segment pairs): the outlines touch or cross, and the far field of "
+                  "such a body was measured wrong by 1e-2 to 1e-1",
+                  geometry.domain_name[A.a].c_str(), geometry.domain_name[A.b].c_str(), c.gap_nm,
+                  geometry.domain_name[B.a].c_str(), geometry.domain_name[B.b].c_str(), at.x, at.z, c.h_nm,
+                  c.gap_nm / c.h_nm, options.warn_gap_ratio, c.pairs));
+    }
+  }
+}
 
 std::shared_ptr<const BemPrepared> prepare_geometry(const CrossSection& section) {
   auto p = std::make_shared<BemPrepared>();
@@ -49,7 +85,8 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
   sys->theta = theta;
   sys->k0 = 2.0 * std::numbers::pi / lambda_nm;
   sys->beta = -sys->k0 * std::sin(theta);
-  sys->mesh = build_mesh(geometry, lambda_nm, options.points_per_wavelength);
+  sys->mesh = build_mesh(geometry, lambda_nm, options.points_per_wavelength, options.corner_split_deg);
+  check_mesh(geometry, sys->mesh, lambda_nm, options);
   sys->media = media(geometry, lambda_nm, sys->beta);
   const double n = sys->mesh.unknowns();
   if (options.method == BemOptions::Method::hmatrix &&
@@ -146,8 +183,14 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
     const GmresResult r = gmres(A, M, B.col(c), x, options.gmres_tolerance, options.gmres_restart,
                                    options.gmres_max_iterations, progress);
     if (!r.converged) {
-      throw Error("bem: GMRES did not converge (relative residual " + std::to_string(r.relative_residual) +
-                  " after " + std::to_string(r.iterations) + " iterations)");
+      // Not an error: a long run keeps its other (λ, θ_i), and the result of this one carries
+      // the warning (output metadata, stderr) with the residual it reached.
+      warn("bem.gmres_not_converged",
+           format("bem: GMRES stopped after %d iterations at relative residual %.2e (goal %.0e) for right-hand side "
+                  "%d of %d at %g nm, theta_i %.1f deg; that solution is unconverged (raise gmres_max_iterations or "
+                  "use a stronger preconditioner)",
+                  r.iterations, r.relative_residual, options.gmres_tolerance, static_cast<int>(c) + 1,
+                  static_cast<int>(B.cols()), lambda_nm, theta * 180.0 / std::numbers::pi));
     }
     if (iterations) iterations->push_back(r.iterations);
     if (options.warm_start && c + 1 < B.cols()) {

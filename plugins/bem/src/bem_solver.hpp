@@ -35,6 +35,9 @@ struct BemOptions {
   // of (part of) its near field as preconditioner — the solver for large barbules.
   enum class Method { dense, gmres, hmatrix };
   double points_per_wavelength = 30.0;  // h ≤ λ/(|n| ppw) on both sides of every interface
+  // Axial currents get separate half tents at corners turning by this much or more (mesh.hpp;
+  // NOTES.md §6.2: shared tents through 90° corners gave error spikes of 1e-2 on blocks).
+  double corner_split_deg = 30.0;
   Incidence incidence = Incidence::beam;
   Method method = Method::dense;
   double window_fraction = 0.25;
@@ -61,6 +64,15 @@ struct BemOptions {
   bool warm_start = true;
   // When set, one line of timings and sizes per (λ, θ_i) is appended to this file.
   std::string log_file;
+  // Warnings (issue 9; thresholds measured, NOTES.md "Warnings (issue 9)"). bem.mesh_coarse: some
+  // segment has fewer points per wavelength (in the denser of its two media) than this — the
+  // far field's error on the validation cylinders passes 1e-2 relative L2 there (≤ 0: off).
+  double warn_min_ppw = 14.0;
+  // bem.near_touching: two boundary pieces that are not neighbours along the mesh come closer
+  // than this × their segment length. The far field was measured unaffected down to 1e-4
+  // (cylinders and a rod under a surface 0.001 nm apart on ~10 nm segments) and wrong by 1e-2 to
+  // 1e-1 for outlines that cross, so this flags contact and crossings, not closeness (≤ 0: off).
+  double warn_gap_ratio = 1e-5;
 };
 
 // The instance-only part: interfaces and the top-surface data of Φ_i.
@@ -95,6 +107,10 @@ struct System {
 };
 std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm, double theta,
                                      const BemOptions& options);
+
+// Raises bem.mesh_coarse / bem.near_touching (plumage/diagnostics.hpp) for a mesh at λ that the
+// measurements of NOTES.md "Warnings (issue 9)" say cannot be trusted; build_system calls it.
+void check_mesh(const Geometry& geometry, const Mesh& mesh, double lambda_nm, const BemOptions& options);
 
 // Incident field of polarisation `pol` at azimuth φ_i as configured.
 IncidentField incident_for(const BemPrepared& prep, const BemOptions& options, double k0, double theta,

@@ -5,8 +5,11 @@
 #include <cmath>
 #include <cstdint>
 #include <map>
+#include <numbers>
+#include <queue>
 #include <unordered_map>
 
+#include "pair_integrals.hpp"
 #include "plumage/error.hpp"
 
 namespace plumage::bem {
@@ -157,7 +160,8 @@ Geometry build_geometry(const CrossSection& section) {
   return g;
 }
 
-Mesh build_mesh(const Geometry& geometry, double lambda_nm, double ppw) {
+Mesh build_mesh(const Geometry& geometry, double lambda_nm, double ppw, double corner_split_deg) {
+  const double corner_cos = std::cos(corner_split_deg * std::numbers::pi / 180.0);
   Mesh mesh;
   mesh.a_count = static_cast<int>(geometry.domain_material.size());
   std::vector<double> hmax(mesh.a_count);
@@ -190,7 +194,9 @@ Mesh build_mesh(const Geometry& geometry, double lambda_nm, double ppw) {
   }
   mesh.n_t = static_cast<int>(mesh.vertices.size());
   // z-coefficients: shared by the two segments of one interface through a regular vertex,
-  // separate half tents at junctions (§6.6).
+  // separate half tents at junctions (§6.6) and at corners where the tangent turns by
+  // corner_split_deg or more (both segments run the same way through the vertex, so t̂0·t̂1 is
+  // the cosine of the turn).
   std::vector<std::vector<std::pair<int, int>>> incident(mesh.n_t);  // (segment, end)
   for (int s = 0; s < static_cast<int>(mesh.segments.size()); ++s) {
     incident[mesh.segments[s].v0].push_back({s, 0});
@@ -207,7 +213,8 @@ Mesh build_mesh(const Geometry& geometry, double lambda_nm, double ppw) {
     }
     const Segment& s0 = mesh.segments[inc[0].first];
     const Segment& s1 = mesh.segments[inc[1].first];
-    if (inc.size() == 2 && s0.a == s1.a && s0.b == s1.b && inc[0].second != inc[1].second) {
+    if (inc.size() == 2 && s0.a == s1.a && s0.b == s1.b && inc[0].second != inc[1].second &&
+        dot(s0.t, s1.t) > corner_cos) {
       mesh.segments[inc[0].first].zdof[inc[0].second] = nz;
       mesh.segments[inc[1].first].zdof[inc[1].second] = nz;
       mesh.z_vertex.push_back(v);
@@ -226,6 +233,101 @@ Mesh build_mesh(const Geometry& geometry, double lambda_nm, double ppw) {
     mesh.domain_segments[mesh.segments[s].b].push_back(s);
   }
   return mesh;
+}
+
+MeshResolution mesh_resolution(const Mesh& mesh, const Geometry& geometry, double lambda_nm, double threshold) {
+  MeshResolution r;
+  std::vector<double> n(geometry.domain_material.size());
+  for (std::size_t d = 0; d < n.size(); ++d) n[d] = std::abs(geometry.domain_material[d].index(lambda_nm));
+  double total = 0.0, coarse = 0.0;
+  r.min_ppw = 1e300;
+  for (const Segment& s : mesh.segments) {
+    const int dense = n[s.a] >= n[s.b] ? s.a : s.b;
+    const double ppw = lambda_nm / (n[dense] * s.h);
+    total += s.h;
+    if (ppw < threshold) coarse += s.h;
+    if (ppw < r.min_ppw) r.min_ppw = ppw, r.domain = dense, r.h_nm = s.h;
+  }
+  r.length_fraction = total > 0.0 ? coarse / total : 0.0;
+  return r;
+}
+
+CloseApproach closest_approach(const Mesh& mesh, double ratio, double path_factor) {
+  CloseApproach out;
+  const int ns = static_cast<int>(mesh.segments.size());
+  if (ns == 0) return out;
+  double hmax = 0.0;
+  for (const Segment& s : mesh.segments) hmax = std::max(hmax, s.h);
+  // Segments bucketed by the cells their bounding boxes cover (cell = longest segment, so a
+  // segment covers at most 2 × 2 cells and the search reaches ratio·h ≤ one cell further).
+  const double cell = hmax;
+  auto cell_of = [&](double v) { return static_cast<std::int64_t>(std::floor(v / cell)); };
+  std::unordered_map<Key, std::vector<int>, KeyHash> grid;
+  for (int i = 0; i < ns; ++i) {
+    const Segment& s = mesh.segments[i];
+    for (auto x = cell_of(std::min(s.p0.x, s.p1.x)); x <= cell_of(std::max(s.p0.x, s.p1.x)); ++x) {
+      for (auto z = cell_of(std::min(s.p0.z, s.p1.z)); z <= cell_of(std::max(s.p0.z, s.p1.z)); ++z) {
+        grid[{x, z}].push_back(i);
+      }
+    }
+  }
+  // Vertex graph along the mesh (for "neighbours along the mesh").
+  std::vector<std::vector<std::pair<int, double>>> adj(mesh.vertices.size());
+  for (const Segment& s : mesh.segments) {
+    adj[s.v0].push_back({s.v1, s.h});
+    adj[s.v1].push_back({s.v0, s.h});
+  }
+  // Is there a path along the mesh from an end of A to an end of B no longer than `budget`?
+  auto connected = [&](const Segment& A, const Segment& B, double budget) {
+    std::unordered_map<int, double> best;
+    using Item = std::pair<double, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<>> queue;
+    for (int v : {A.v0, A.v1}) best[v] = 0.0, queue.push({0.0, v});
+    while (!queue.empty()) {
+      const auto [d, v] = queue.top();
+      queue.pop();
+      if (v == B.v0 || v == B.v1) return true;
+      if (d > best[v]) continue;
+      for (const auto& [w, len] : adj[v]) {
+        const double dw = d + len;
+        if (dw > budget) continue;
+        auto it = best.find(w);
+        if (it != best.end() && it->second <= dw) continue;
+        best[w] = dw;
+        queue.push({dw, w});
+      }
+    }
+    return false;
+  };
+  double worst = 1e300;
+  std::vector<int> seen;
+  for (int i = 0; i < ns; ++i) {
+    const Segment& A = mesh.segments[i];
+    const double reach = ratio * hmax;
+    seen.clear();
+    for (auto x = cell_of(std::min(A.p0.x, A.p1.x) - reach); x <= cell_of(std::max(A.p0.x, A.p1.x) + reach); ++x) {
+      for (auto z = cell_of(std::min(A.p0.z, A.p1.z) - reach); z <= cell_of(std::max(A.p0.z, A.p1.z) + reach); ++z) {
+        auto it = grid.find({x, z});
+        if (it == grid.end()) continue;
+        for (int j : it->second) {
+          if (j > i) seen.push_back(j);
+        }
+      }
+    }
+    std::sort(seen.begin(), seen.end());
+    seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+    for (int j : seen) {
+      const Segment& B = mesh.segments[j];
+      if (A.v0 == B.v0 || A.v0 == B.v1 || A.v1 == B.v0 || A.v1 == B.v1) continue;
+      const double h = std::max(A.h, B.h);
+      const double d = segment_distance(A, B);
+      if (d >= ratio * h) continue;
+      if (connected(A, B, path_factor * h)) continue;
+      ++out.pairs;
+      if (d / h < worst) worst = d / h, out.seg_a = i, out.seg_b = j, out.gap_nm = d, out.h_nm = h;
+    }
+  }
+  return out;
 }
 
 }  // namespace plumage::bem

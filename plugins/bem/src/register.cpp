@@ -54,6 +54,12 @@ void register_bem(plumage::Registrar& registrar) {
                    "preconditioner dense_single: refuse larger systems (memory 8 N^2 bytes)"},
                   {"gmres_tolerance", "number", "1", "1e-8", "methods gmres/hmatrix: relative residual"},
                   {"gmres_restart", "integer", "1", "300", "methods gmres/hmatrix: Krylov vectors kept"},
+                  {"gmres_max_iterations", "integer", "1", "5000",
+                   "methods gmres/hmatrix: stop there; an unconverged solve raises warning bem.gmres_not_converged"},
+                  {"corner_split_deg", "number", "deg", "30",
+                   "axial currents get separate half tents where an interface turns by this much or more"},
+                  {"warn_min_ppw", "number", "1", "14",
+                   "warning bem.mesh_coarse below this many points per wavelength on any segment (0: off)"},
                   {"warm_start", "bool", "-", "true",
                    "methods gmres/hmatrix: start from the residual-minimising combination of the earlier solutions"},
                   {"log_file", "text", "-", "", "append one line of timings and sizes per (lambda, theta_i)"},
@@ -80,6 +86,10 @@ void register_bem(plumage::Registrar& registrar) {
             static_cast<int>(p.integer_or("max_dense_single_unknowns", 40000, plumage::Limits::positive()));
         o.gmres_tolerance = p.number_or("gmres_tolerance", 1e-8, plumage::Limits::positive());
         o.gmres_restart = static_cast<int>(p.integer_or("gmres_restart", 300, plumage::Limits::positive()));
+        o.gmres_max_iterations =
+            static_cast<int>(p.integer_or("gmres_max_iterations", 5000, plumage::Limits::positive()));
+        o.warn_min_ppw = p.number_or("warn_min_ppw", 14.0, plumage::Limits::non_negative());
+        o.corner_split_deg = p.number_or("corner_split_deg", 30.0, plumage::Limits::non_negative());
         o.warm_start = p.boolean_or("warm_start", true);
         o.log_file = p.text_or("log_file", "");
         o.max_dense_unknowns = static_cast<int>(p.integer_or("max_dense_unknowns", 20000, plumage::Limits::positive()));

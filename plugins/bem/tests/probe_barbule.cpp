@@ -29,6 +29,14 @@ int main(int argc, char** argv) {
   double hmin = 1e9;
   for (const auto& s : mesh.segments) hmin = std::min(hmin, s.h);
   std::printf("min segment %.3f nm\n", hmin);
+  // issue 9: what the near-touching detector sees (NOTES.md "Warnings (issue 9)")
+  for (double ratio : {1e-5, 1e-3, 0.1, 0.5, 1.0, 2.0}) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const auto c = bem::closest_approach(mesh, ratio);
+    std::printf("closest approach below gap/h %g: %d pairs, worst gap %.4g nm at h %.3g nm (%.2f s)\n", ratio, c.pairs,
+                c.gap_nm, c.h_nm, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  std::printf("validate(): %zu problems\n", validate(cs).size());
   if (argc > 4) {  // solve: dense LU vs block-Jacobi GMRES, one plane wave per pol at θ = 0, φ = 0.3
     for (int method = 0; method < 2; ++method) {
       bem::BemOptions o;
