@@ -7,6 +7,7 @@
 #include "plumage/error.hpp"
 #include "plumage/simd_math.hpp"
 #include "radiation.hpp"
+#include "surface_validity.hpp"
 
 namespace plumage {
 
@@ -35,6 +36,9 @@ struct PreparedTop final : ScatteringSolver::Prepared {
   std::vector<Vec2> sample_normals;          // fine interior vertices 1 … (V−1)K − 1
   std::vector<LayerProfile> sample_profiles;
   std::shared_ptr<const LocalReflection> reflection;
+  // Slope and curvature of the top under the window: the validity checks of surface_validity.hpp
+  // (warnings approx.rough_surface, approx.high_curvature, approx.grazing).
+  detail::TopSurfaceStatistics surface;
 };
 
 // Jones matrices for every incident azimuth at every node ([a·nodes + m]) or, when the
@@ -223,6 +227,9 @@ std::shared_ptr<const ScatteringSolver::Prepared> ApproximateSolver::prepare(
   for (std::size_t k = 0; k + 1 < n; ++k) {
     p->segment_length.push_back(norm(section.top[k + 1] - section.top[k]));
   }
+  // Beyond the roughness checked against the full-wave BEM: say so (issue 9), never silently.
+  p->surface = detail::top_surface_statistics(p->vertices, p->normals, p->window, p->node_length, s);
+  detail::warn_if_rough(p->surface);
   if (section.layered) {
     auto all = layer_profiles(section);
     p->profiles.assign(all.begin() + 1, all.end() - 1);
@@ -260,6 +267,10 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
   const double k0 = wavenumber_per_nm(lambda_nm);
   const double ct = std::cos(theta_i_rad), st = std::sin(theta_i_rad);
   const double gamma0 = k0 * ct;  // transverse wavenumber in air
+
+  // 0. Curvature and grazing beyond the range checked against the full-wave BEM: warnings.
+  detail::warn_if_curved(top.surface, lambda_nm);
+  for (double phi : phi_i_rad) detail::warn_if_grazing(top.surface, lambda_nm, theta_i_rad, phi);
 
   // 1. Local reflection under every node, for every incident azimuth, in one batch.
   const std::vector<JonesReflection> jones = local_reflection(top, lambda_nm, theta_i_rad, phi_i_rad);
