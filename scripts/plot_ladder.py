@@ -38,7 +38,7 @@ def main():
     colours = {b: plt.cm.tab10(i % 10) for i, b in enumerate(backends)}
     case_index = {}
 
-    fig, ax = plt.subplots(figsize=(10.5, 6.8))
+    fig, ax = plt.subplots(figsize=(10.0, 7.0))
     for (backend, case), rungs in curves.items():
         rungs.sort(key=lambda r: float(r["fidelity"]))
         k = case_index.setdefault(backend, {}).setdefault(case, len(case_index[backend]))
@@ -52,10 +52,9 @@ def main():
             filled = r["pareto"] == "1"
             ax.plot([xi], [yi], marker, color=c, ms=7,
                     markerfacecolor=c if filled else "white", markeredgewidth=1.4)
-        # Label the cheapest and the most accurate rung with their setting.
-        for r, xi, yi in ((rungs[0], x[0], y[0]), (rungs[-1], x[-1], y[-1])):
-            ax.annotate(r["setting"], (xi, yi), textcoords="offset points", xytext=(5, 4),
-                        fontsize=7, color=c)
+        # Label the finest rung with its setting (the legend names the curve).
+        ax.annotate(rungs[-1]["setting"], (x[-1], y[-1]), textcoords="offset points", xytext=(5, -10),
+                    fontsize=7, color=c)
     ax.plot([], [], "o", color="gray", label="filled: Pareto-optimal rung of its curve")
     ax.plot([], [], "o", color="gray", markerfacecolor="white", label="hollow: dominated rung")
     ax.set_xscale("log")
@@ -64,9 +63,10 @@ def main():
     ax.set_ylabel("error against the backend's reference (own metric)")
     ax.grid(True, which="both", alpha=0.25)
     ax.set_title(args.title)
-    ax.legend(fontsize=7, loc="best")
+    # Below the axes: the curves span the whole plot.
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.11), ncol=1, frameon=False)
     fig.tight_layout()
-    fig.savefig(args.png, dpi=110, format="png")
+    fig.savefig(args.png, dpi=110, format="png", bbox_inches="tight")
 
 
 if __name__ == "__main__":
