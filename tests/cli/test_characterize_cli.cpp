@@ -63,6 +63,10 @@ TEST_CASE("characterize: shards merged are bit-identical to a single run", "[cha
   INFO(merged.output);
   REQUIRE(merged.status == 0);
   CHECK(bytes(dir / "merged.plm") == bytes(dir / "single.plm"));
+  // The grid's grazing cells are beyond the approximate solver's validated range (issue 9): the
+  // warning was printed and is in the material (.plm `warnings`), the same in the merged file.
+  CHECK(single.output.find("[approx.grazing]") != std::string::npos);
+  CHECK(bytes(dir / "single.plm").find("approx.grazing: raised while computing") != std::string::npos);
 
   // A missing shard: exit 1, the count of missing groups, nothing written.
   const Result partial = run("merge " + (dir / "part1.shard").string() + " --out " + (dir / "partial.plm").string());
