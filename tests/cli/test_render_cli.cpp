@@ -123,6 +123,38 @@ TEST_CASE("render: a barb-level feather with a material file; the same image on 
   CHECK(fs::exists(all / "feather-b.exr"));
 }
 
+TEST_CASE("render: a material's warnings reach stderr and the EXR header", "[cli][render][warnings]") {
+  // The same synthetic material, once as characterised with a warning (issue 9), once clean.
+  const fs::path warned = plumage::cli_test::scratch_dir(kSuite) / "warned.plm";
+  FeatherMaterial m = read_feather_material(synthetic_material());
+  m.warnings = "fit.two_lobes: raised while computing 3 of 40 work groups, first at lambda = 400 nm, cos theta_i = 1/4\n";
+  write_feather_material(warned, m);
+  auto scene_with = [](const fs::path& plm, const std::string& name) {
+    return write_scene(name + ".yaml",
+                       "scene: " + name + "\n"
+                       "render: {spp: 1, resolution: [8, 8], seed: 3}\n"
+                       "camera: {position_mm: [0, -5, 30], look_at_mm: [0, 4, 0], up: [0, 1, 0], fov_deg: 30}\n"
+                       "lights: [{type: distant, toward_light: [0, 0.3, 1], irradiance: 3}]\n"
+                       "materials: {green: {type: feather, file: " + plm.string() + "}}\n"
+                       "objects: [{type: feather, material: green, detail: barb_level, shape: {length_mm: 8, vane_width_mm: 4}}]\n");
+  };
+  const fs::path out = plumage::cli_test::fresh_scratch_path(kSuite, "warned");
+  Result r = run("render " + scene_with(warned, "warned").string() + " --out " + out.string());
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK(r.output.find("[material.warnings]") != std::string::npos);
+  const auto attributes = read_exr_string_attributes(out / "warned.exr");
+  REQUIRE(attributes.count("plumage:warnings") == 1);
+  CHECK(attributes.at("plumage:warnings").find("material.warnings: ") == 0);
+  CHECK(attributes.at("plumage:warnings").find("fit.two_lobes") != std::string::npos);
+
+  const fs::path clean_out = plumage::cli_test::fresh_scratch_path(kSuite, "clean");
+  r = run("render " + scene_with(synthetic_material(), "clean").string() + " --out " + clean_out.string());
+  REQUIRE(r.status == 0);
+  CHECK(r.output.find("warning: ") == std::string::npos);
+  CHECK(read_exr_string_attributes(clean_out / "clean.exr").count("plumage:warnings") == 0);
+}
+
 TEST_CASE("render: bad input exits 2 with file:line:column and writes nothing", "[cli][render]") {
   std::string bad = kPlane;
   bad.replace(bad.find("fov_deg"), 7, "fov_dge");
