@@ -20,19 +20,6 @@ using namespace plumage;
 
 namespace {
 
-// Restores the process's diagnostics after a test that redirects or fills them.
-struct ScopedDiagnostics {
-  std::ostringstream echo;
-  ScopedDiagnostics() {
-    diagnostics().clear();
-    diagnostics().set_echo(&echo);
-  }
-  ~ScopedDiagnostics() {
-    diagnostics().clear();
-    diagnostics().set_echo(&std::cerr);
-  }
-};
-
 std::filesystem::path temp_file(const char* name) {
   auto dir = std::filesystem::temp_directory_path() / "plumage-test-diagnostics";
   std::filesystem::create_directories(dir);
@@ -63,7 +50,7 @@ std::string read_bytes(const std::filesystem::path& f) {
 }  // namespace
 
 TEST_CASE("diagnostics: a code is echoed once, counted, summarised on one line each", "[diagnostics]") {
-  ScopedDiagnostics scope;
+  CapturedWarnings scope;
   CHECK(diagnostics().empty());
   warn("test.first", "first condition, x = 3");
   warn("test.second", "second condition\nwith a line break");
@@ -76,19 +63,19 @@ TEST_CASE("diagnostics: a code is echoed once, counted, summarised on one line e
   CHECK(list[0].count == 2);
   CHECK(list[0].message == "first condition, x = 3");
   CHECK(list[1].message == "second condition with a line break");
-  CHECK(scope.echo.str() ==
+  CHECK(scope.echoed() ==
         "warning: first condition, x = 3 [test.first]\n"
         "warning: second condition with a line break [test.second]\n");
   CHECK(diagnostics().summary("; ") ==
         "test.first: first condition, x = 3 (raised 2 times); test.second: second condition with a line break; ");
   diagnostics().set_echo(nullptr);
   warn("test.quiet", "not echoed");
-  CHECK(scope.echo.str().find("not echoed") == std::string::npos);
+  CHECK(scope.echoed().find("not echoed") == std::string::npos);
   CHECK(diagnostics().has("test.quiet"));
 }
 
 TEST_CASE("diagnostics: concurrent raises from many threads are all counted", "[diagnostics]") {
-  ScopedDiagnostics scope;
+  CapturedWarnings scope;
   std::vector<std::thread> threads;
   for (int t = 0; t < 8; ++t)
     threads.emplace_back([t] {

@@ -17,19 +17,6 @@ using namespace plumage;
 
 namespace {
 
-// Clears the process diagnostics and captures their stderr echo for one test; restores stderr.
-struct CapturedWarnings {
-  std::ostringstream echo;
-  CapturedWarnings() {
-    diagnostics().clear();
-    diagnostics().set_echo(&echo);
-  }
-  ~CapturedWarnings() {
-    diagnostics().set_echo(&std::cerr);
-    diagnostics().clear();
-  }
-};
-
 bool finite(const MaterialNode& n) {
   for (double v : {n.f_eff, n.m_eff, n.phi_eff, n.f_sta, n.m_sta, n.phi_sta, n.pol_share, n.correlation})
     if (!std::isfinite(v)) return false;
@@ -125,7 +112,7 @@ TEST_CASE("a single lobe with instance speckle raises no fit warning", "[fit][st
     CHECK(r.node.f_eff > 0.0);
   }
   CHECK(diagnostics().empty());
-  CHECK(w.echo.str().empty());
+  CHECK(w.echoed().empty());
 }
 
 TEST_CASE("two separate lobes are reported as fit.two_lobes", "[fit][stability]") {
@@ -154,9 +141,9 @@ TEST_CASE("two separate lobes are reported as fit.two_lobes", "[fit][stability]"
     CHECK(diagnostics().has("fit.two_lobes"));
     CHECK_FALSE(diagnostics().has("fit.near_zero_energy"));
     // Echoed once on stderr, one line, with the numbers.
-    CHECK_THAT(w.echo.str(), Catch::StartsWith("warning: two separate lobes at lambda = 550 nm"));
-    CHECK_THAT(w.echo.str(), Catch::EndsWith("[fit.two_lobes]\n"));
-    CHECK_THAT(w.echo.str(), Catch::Contains("% of the energy"));
+    CHECK_THAT(w.echoed(), Catch::StartsWith("warning: two separate lobes at lambda = 550 nm"));
+    CHECK_THAT(w.echoed(), Catch::EndsWith("[fit.two_lobes]\n"));
+    CHECK_THAT(w.echoed(), Catch::Contains("% of the energy"));
     // The node is still a valid single lobe (kept: the warning reports, it does not replace).
     CHECK(finite(r.node));
     CHECK(r.node.f_eff > 0.0);
@@ -192,8 +179,8 @@ TEST_CASE("near-zero energy gives the zero lobe and fit.near_zero_energy", "[fit
     INFO("E " << r.energy);
     CHECK(diagnostics().has("fit.near_zero_energy"));
     CHECK(diagnostics().warnings().size() == 1);
-    CHECK_THAT(w.echo.str(), Catch::StartsWith("warning: near-zero reflected energy E = "));
-    CHECK_THAT(w.echo.str(), Catch::EndsWith("[fit.near_zero_energy]\n"));
+    CHECK_THAT(w.echoed(), Catch::StartsWith("warning: near-zero reflected energy E = "));
+    CHECK_THAT(w.echoed(), Catch::EndsWith("[fit.near_zero_energy]\n"));
     // The documented zero lobe: no energy, neutral shape, every field finite.
     CHECK(finite(r.node));
     CHECK(r.node.f_eff == 0.0);

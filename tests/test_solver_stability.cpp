@@ -32,19 +32,6 @@ SpeciesConfig validation_config(const std::string& name) {
                              testing::registry());
 }
 
-// Diagnostics cleared and echoed into a string for the duration of a test; restored afterwards.
-struct CapturedDiagnostics {
-  std::ostringstream echo;
-  CapturedDiagnostics() {
-    diagnostics().clear();
-    diagnostics().set_echo(&echo);
-  }
-  ~CapturedDiagnostics() {
-    diagnostics().set_echo(&std::cerr);
-    diagnostics().clear();
-  }
-};
-
 const std::vector<std::string> kCodes{"approx.rough_surface", "approx.high_curvature", "approx.grazing"};
 
 // prepare + solve of instance 0 at one wavelength and incident direction, as `plumage simulate` does,
@@ -79,7 +66,7 @@ std::string written_warnings(const std::vector<FarField>& fields) {
 }  // namespace
 
 TEST_CASE("approximate solver: smooth inputs at ordinary incidence raise no warning", "[stability]") {
-  CapturedDiagnostics captured;
+  CapturedWarnings captured;
   // The flat 40 µm keratin film and the 4 µm film of the BEM study (solved here by the approximate
   // solver), normal and oblique.
   const auto wide = validation_config("keratin-film-slab");
@@ -98,19 +85,19 @@ TEST_CASE("approximate solver: smooth inputs at ordinary incidence raise no warn
   simulate(rockdove, 550.0, 0.0, 0.0);
   INFO(diagnostics().summary());
   for (const auto& code : kCodes) CHECK_FALSE(diagnostics().has(code));
-  CHECK(captured.echo.str().empty());
+  CHECK(captured.echoed().empty());
   CHECK(written_warnings({}).empty());
 }
 
 TEST_CASE("approximate solver: a rough top raises approx.rough_surface, on stderr and in the file", "[stability]") {
-  CapturedDiagnostics captured;
+  CapturedWarnings captured;
   const auto config = validation_config("rough-film");  // rms slope 0.25 rad
   const auto ff = simulate(config, 550.0, 0.0, 0.0);
   CHECK(diagnostics().has("approx.rough_surface"));
   CHECK_FALSE(diagnostics().has("approx.high_curvature"));
   CHECK_FALSE(diagnostics().has("approx.grazing"));
   // Echoed once, single line, with the limit.
-  const std::string echo = captured.echo.str();
+  const std::string echo = captured.echoed();
   CHECK_THAT(echo, Catch::StartsWith("warning: ") && Catch::Contains("[approx.rough_surface]") &&
                        Catch::Contains("rms slope under the window above 0.12 rad"));
   CHECK(std::count(echo.begin(), echo.end(), '\n') == 1);
@@ -122,14 +109,14 @@ TEST_CASE("approximate solver: a rough top raises approx.rough_surface, on stder
 }
 
 TEST_CASE("approximate solver: a small radius of curvature raises approx.high_curvature", "[stability]") {
-  CapturedDiagnostics captured;
+  CapturedWarnings captured;
   // A melanin cylinder of 1 µm radius (its top is a half circle): 1.5 wavelengths at 650 nm, where
   // the study's BEM found the approximate pattern off by 0.27 (mean relative L2).
   const auto config = validation_config("melanin-cylinder");
   const auto ff = simulate(config, 650.0, 0.0, 0.0);
   CHECK(diagnostics().has("approx.high_curvature"));
   CHECK_FALSE(diagnostics().has("approx.rough_surface"));  // a perfect arc is not rough
-  CHECK_THAT(captured.echo.str(), Catch::Contains("[approx.high_curvature]"));
+  CHECK_THAT(captured.echoed(), Catch::Contains("[approx.high_curvature]"));
   CHECK_THAT(written_warnings(ff), Catch::Contains("approx.high_curvature: "));
   // The measured statistic is the arc's radius.
   const auto stats = detail::top_surface_statistics(config.structure->generate(0), 0.2);
@@ -138,7 +125,7 @@ TEST_CASE("approximate solver: a small radius of curvature raises approx.high_cu
 }
 
 TEST_CASE("approximate solver: the curvature criterion follows the wavelength", "[stability]") {
-  CapturedDiagnostics captured;
+  CapturedWarnings captured;
   // The 1 µm melanin cylinder is 2.5 wavelengths at 400 nm (inside the checked range: 1.5 µm held at
   // 2.3 λ) and 1.8 at 550 nm (beyond it).
   const auto config = validation_config("melanin-cylinder");
@@ -162,21 +149,21 @@ TEST_CASE("approximate solver: grazing incidence raises approx.grazing", "[stabi
   const double c005 = rad_to_deg(std::acos(0.05));
   for (const Case& c : {Case{0.0, -c005, true}, Case{c005, c005, true}, Case{c005, 0.0, false}, Case{0.0, -60.0, false},
                         Case{0.0, 88.0, true}}) {
-    CapturedDiagnostics captured;
+    CapturedWarnings captured;
     const auto ff = simulate(config, 550.0, c.theta_deg, c.phi_deg);
     INFO("theta " << c.theta_deg << " phi " << c.phi_deg << ": " << diagnostics().summary());
     CHECK(diagnostics().has("approx.grazing") == c.grazing);
     CHECK_FALSE(diagnostics().has("approx.rough_surface"));
     CHECK_FALSE(diagnostics().has("approx.high_curvature"));
     if (c.grazing) {
-      CHECK_THAT(captured.echo.str(), Catch::Contains("[approx.grazing]"));
+      CHECK_THAT(captured.echoed(), Catch::Contains("[approx.grazing]"));
       CHECK_THAT(written_warnings(ff), Catch::Contains("approx.grazing: "));
     }
   }
   // A rough top reaches the horizon sooner (its normals tilt the lobe toward it): at φ_i = −45°,
   // 650 nm, the flat 4 µm film of the study does not warn (spill 0.47; BEM error 0.11), the rough
   // one does (the study's rms slope 0.076 film already reached 0.39 there).
-  CapturedDiagnostics captured;
+  CapturedWarnings captured;
   simulate(validation_config("keratin-film-slab-bem"), 650.0, 0.0, -45.0, &kApproximate);
   CHECK_FALSE(diagnostics().has("approx.grazing"));
   simulate(validation_config("rough-film"), 650.0, 0.0, -45.0);
@@ -184,7 +171,7 @@ TEST_CASE("approximate solver: grazing incidence raises approx.grazing", "[stabi
 }
 
 TEST_CASE("approximate solver: warnings are counted, not repeated, over many solves", "[stability]") {
-  CapturedDiagnostics captured;
+  CapturedWarnings captured;
   const auto config = validation_config("rough-film");
   const auto prepared = config.solver->prepare(config.structure->generate(0), config.reflection);
   const std::vector<double> phis{0.0, deg_to_rad(-88.0)};
@@ -195,6 +182,6 @@ TEST_CASE("approximate solver: warnings are counted, not repeated, over many sol
   CHECK(w[0].count == 1);  // one prepare
   CHECK(w[1].code == "approx.grazing");
   CHECK(w[1].count == 3);  // one per solve with a grazing azimuth
-  const std::string echo = captured.echo.str();
+  const std::string echo = captured.echoed();
   CHECK(std::count(echo.begin(), echo.end(), '\n') == 2);
 }

@@ -78,4 +78,33 @@ Diagnostics& diagnostics() {
 
 void warn(std::string_view code, std::string message) { diagnostics().warn(code, std::move(message)); }
 
+CapturedWarnings::CapturedWarnings() : echo_(std::make_unique<std::ostringstream>()) {
+  diagnostics().clear();
+  diagnostics().set_echo(echo_.get());
+}
+
+CapturedWarnings::~CapturedWarnings() {
+  diagnostics().set_echo(&std::cerr);
+  diagnostics().clear();
+}
+
+std::string CapturedWarnings::echoed() const { return echo_->str(); }
+
+bool CapturedWarnings::echoed(std::string_view code) const {
+  const std::string s = echo_->str();
+  return s.find("warning: ") != std::string::npos && s.find("[" + std::string(code) + "]") != std::string::npos;
+}
+
+std::size_t CapturedWarnings::count(std::string_view code) const {
+  for (const auto& w : diagnostics().warnings())
+    if (w.code == code) return w.count;
+  return 0;
+}
+
+std::string CapturedWarnings::message(std::string_view code) const {
+  for (const auto& w : diagnostics().warnings())
+    if (w.code == code) return w.message;
+  return {};
+}
+
 }  // namespace plumage

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -57,5 +58,24 @@ Diagnostics& diagnostics();
 
 // Shorthand for diagnostics().warn(code, message).
 void warn(std::string_view code, std::string message);
+
+// For tests and tools: for its lifetime the process's diagnostics start empty and their echo goes
+// into echoed() instead of stderr; on destruction (also when a test check throws) the echo returns
+// to std::cerr and the warnings are cleared.
+class CapturedWarnings {
+ public:
+  CapturedWarnings();
+  ~CapturedWarnings();
+  CapturedWarnings(const CapturedWarnings&) = delete;
+  CapturedWarnings& operator=(const CapturedWarnings&) = delete;
+
+  std::string echoed() const;                        // everything echoed so far
+  bool echoed(std::string_view code) const;          // "warning: … [<code>]" was echoed
+  std::size_t count(std::string_view code) const;    // raises of `code` so far, 0 if none
+  std::string message(std::string_view code) const;  // its first message, "" if none
+
+ private:
+  std::unique_ptr<std::ostringstream> echo_;
+};
 
 }  // namespace plumage

@@ -17,19 +17,6 @@ using namespace plumage::bem::testing;
 
 namespace {
 
-// Collects the stderr echo of the warnings raised inside one test; restores std::cerr after.
-struct CapturedWarnings {
-  std::ostringstream echo;
-  CapturedWarnings() {
-    diagnostics().clear();
-    diagnostics().set_echo(&echo);
-  }
-  ~CapturedWarnings() {
-    diagnostics().set_echo(&std::cerr);
-    diagnostics().clear();
-  }
-};
-
 std::string message_of(std::string_view code) {
   for (const Warning& w : diagnostics().warnings()) {
     if (w.code == code) return w.message;
@@ -124,7 +111,7 @@ TEST_CASE("bem warnings: a mesh below 14 ppw raises bem.mesh_coarse, and its far
     CHECK(msg.find("has 8.1 points per wavelength in region 0 (body)") != std::string::npos);  // 43.7 nm edges
     CHECK(msg.find("below 14 ppw") != std::string::npos);
     CHECK(msg.find('\n') == std::string::npos);
-    CHECK(captured.echo.str() == "warning: " + msg + " [bem.mesh_coarse]\n");
+    CHECK(captured.echoed() == "warning: " + msg + " [bem.mesh_coarse]\n");
   }
   // 16 ppw (just above the threshold) and the production 30: no warning, and indeed accurate.
   for (double ppw : {16.0, 30.0}) {
@@ -202,7 +189,7 @@ TEST_CASE("bem warnings: touching or crossing outlines raise bem.near_touching; 
     CHECK(msg.find("comes within 0 nm") != std::string::npos);
     CHECK(msg.find("region 0 (body)") != std::string::npos);
     CHECK(msg.find("region 1 (body)") != std::string::npos);
-    CHECK(captured.echo.str().find("[bem.near_touching]") != std::string::npos);
+    CHECK(captured.echoed().find("[bem.near_touching]") != std::string::npos);
   }
   // Junctions, shared edges and short edges are neighbours along the mesh, not near-touching:
   // the junction body (three touching blocks) raises nothing.
@@ -246,7 +233,7 @@ TEST_CASE("bem warnings: GMRES stopped at its iteration limit raises bem.gmres_n
     CHECK(msg.find("550 nm") != std::string::npos);
     // both right-hand sides stopped: raised twice, kept once
     CHECK(diagnostics().warnings().front().count == 2);
-    CHECK(captured.echo.str() == "warning: " + msg + " [bem.gmres_not_converged]\n");
+    CHECK(captured.echoed() == "warning: " + msg + " [bem.gmres_not_converged]\n");
   }
   {
     // enough iterations: converged, agrees with LU, nothing raised

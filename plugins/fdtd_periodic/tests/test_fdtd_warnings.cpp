@@ -23,35 +23,6 @@ using namespace plumage;
 
 namespace {
 
-// Captures the diagnostics of one test: cleared on entry, stderr echo redirected into `echo`
-// (restored to std::cerr on exit, also when a check throws).
-struct CapturedWarnings {
-  std::ostringstream echo;
-  CapturedWarnings() {
-    diagnostics().clear();
-    diagnostics().set_echo(&echo);
-  }
-  ~CapturedWarnings() {
-    diagnostics().set_echo(&std::cerr);
-    diagnostics().clear();
-  }
-  std::size_t count(std::string_view code) const {
-    for (const auto& w : diagnostics().warnings())
-      if (w.code == code) return w.count;
-    return 0;
-  }
-  std::string message(std::string_view code) const {
-    for (const auto& w : diagnostics().warnings())
-      if (w.code == code) return w.message;
-    return {};
-  }
-  // The code was echoed once as "warning: <message> [<code>]".
-  bool echoed(std::string_view code) const {
-    const std::string s = echo.str();
-    return s.find("warning: ") != std::string::npos && s.find("[" + std::string(code) + "]") != std::string::npos;
-  }
-};
-
 bool has_note(const ReflectionTable& t, std::string_view code) {
   const std::string& n = t.metadata().notes;
   return n.find("WARNING:") != std::string::npos && n.find("[" + std::string(code) + "]") != std::string::npos;
@@ -151,7 +122,7 @@ TEST_CASE("table at the Courant limit warns; over it is refused or caught and re
     CapturedWarnings w;
     const ReflectionTable t = fdtd_table::build_table(make, h * nx, g, {}, opt, {});
     CHECK(diagnostics().empty());
-    CHECK(w.echo.str().empty());
+    CHECK(w.echoed().empty());
     CHECK(t.metadata().notes.find("WARNING") == std::string::npos);
     return t;
   }();

@@ -14,22 +14,6 @@ namespace plumage::pathtracer {
 
 namespace {
 
-Scene ladder_scene(int size) {
-  using namespace plumage::testing;
-  Scene s;
-  s.name = "ladder";
-  s.materials = {diffuse(0.6), feather(synthetic_feather(0.8, 6))};
-  SceneMesh floor = square(60.0, 0);
-  for (auto& p : floor.positions) p.z = -1.0f;
-  s.meshes.push_back(floor);
-  s.meshes.push_back(square(12.0, 1, 200));
-  s.area_lights.push_back({v3f(-10, -10, 25), v3f(0, 20, 0), v3f(20, 0, 0), 0.4, false});
-  s.point_lights.push_back({v3f(8, 4, 10), 40.0});
-  s.environment.radiance = 0.1;
-  s.camera = far_camera({0.2, -0.4, 0.89}, 40.0, 0.9, size);
-  return s;
-}
-
 // RMS over pixels and channels of (a − ref), relative to the RMS of ref.
 double relative_rms(const LinearImage& a, const LinearImage& ref) {
   double num = 0, den = 0;
@@ -47,7 +31,7 @@ std::vector<LadderPoint> run_render_ladder(const AccuracyLadder::Options& option
   const int size = options.quick ? 32 : 64;
   const int reference_spp = options.quick ? 4096 : 16384;
   const std::vector<int> ladder = options.quick ? std::vector<int>{1, 4, 16, 64, 256} : std::vector<int>{1, 4, 16, 64, 256, 1024};
-  const Scene scene = ladder_scene(size);
+  const Scene scene = plumage::testing::noisy_feather_scene(size);
   const PathTracer tracer;
   RenderSettings settings;
   settings.samples_per_pixel = reference_spp;

@@ -165,4 +165,23 @@ inline double d65_at(double l) {
   return t.d65[i] + a * (t.d65[i + 1] - t.d65[i]);
 }
 
+// Feather patch over a diffuse floor, an area light, a point light and an environment: every
+// estimator (NEE + MIS, BSDF sampling, spectral MIS, roulette) contributes noise.
+inline Scene noisy_feather_scene(int size) {
+  Scene s;
+  s.name = "noisy";
+  s.materials = {diffuse(0.6), feather(synthetic_feather(0.8, 6))};
+  SceneMesh floor = square(60.0, 0);
+  for (auto& p : floor.positions) p.z = -1.0f;
+  s.meshes.push_back(floor);
+  s.meshes.push_back(square(12.0, 1, 200));
+  s.area_lights.push_back({v3f(-10, -10, 25), v3f(20, 0, 0), v3f(0, 20, 0), 0.4, false});
+  // Facing down: the emitting side is edge_u × edge_v = +z… flip it to face the scene.
+  std::swap(s.area_lights[0].edge_u_mm, s.area_lights[0].edge_v_mm);
+  s.point_lights.push_back({v3f(8, 4, 10), 40.0});
+  s.environment.radiance = 0.1;
+  s.camera = far_camera({0.2, -0.4, 0.89}, 40.0, 0.9, size);
+  return s;
+}
+
 }  // namespace plumage::testing

@@ -14,25 +14,6 @@ using namespace plumage::testing;
 
 namespace {
 
-// Feather patch over a diffuse floor, an area light, a point light and an environment: every
-// estimator (NEE + MIS, BSDF sampling, spectral MIS, roulette) contributes noise.
-Scene noisy_scene(int size) {
-  Scene s;
-  s.name = "noisy";
-  s.materials = {diffuse(0.6), feather(synthetic_feather(0.8, 6))};
-  SceneMesh floor = square(60.0, 0);
-  for (auto& p : floor.positions) p.z = -1.0f;
-  s.meshes.push_back(floor);
-  s.meshes.push_back(square(12.0, 1, 200));
-  s.area_lights.push_back({v3f(-10, -10, 25), v3f(20, 0, 0), v3f(0, 20, 0), 0.4, false});
-  // Facing down: the emitting side is edge_u × edge_v = +z… flip it to face the scene.
-  std::swap(s.area_lights[0].edge_u_mm, s.area_lights[0].edge_v_mm);
-  s.point_lights.push_back({v3f(8, 4, 10), 40.0});
-  s.environment.radiance = 0.1;
-  s.camera = far_camera({0.2, -0.4, 0.89}, 40.0, 0.9, size);
-  return s;
-}
-
 double rms(const LinearImage& a, const LinearImage& ref) {
   double s = 0;
   for (std::size_t i = 0; i < a.pixels().size(); ++i) {
@@ -45,7 +26,7 @@ double rms(const LinearImage& a, const LinearImage& ref) {
 }  // namespace
 
 TEST_CASE("pathtracer convergence: RMS error against a 1024-spp reference falls as spp^-1/2", "[pathtracer]") {
-  const Scene scene = noisy_scene(10);
+  const Scene scene = noisy_feather_scene(10);
   const pathtracer::PathTracer tracer;
   RenderSettings settings;
   settings.samples_per_pixel = 1024;
@@ -81,7 +62,7 @@ TEST_CASE("pathtracer convergence: RMS error against a 1024-spp reference falls 
 }
 
 TEST_CASE("pathtracer determinism: the same seed gives bit-identical images on 1 and 2 threads", "[pathtracer]") {
-  const Scene scene = noisy_scene(40);
+  const Scene scene = noisy_feather_scene(40);
   RenderSettings settings;
   settings.samples_per_pixel = 4;
   settings.tile_size = 8;

@@ -64,19 +64,15 @@ TEST_CASE("photonic_crystal passes a table's warnings on to the run that uses it
   registry.load_library(fs::path(PLUMAGE_TEST_PLUGIN_DIR) / "libplumage_photonic_crystal.so");
   PluginContext ctx = registry.context();
   ctx.config_dir = dir;
-  diagnostics().clear();
-  std::ostringstream echo;
-  diagnostics().set_echo(&echo);
+  CapturedWarnings captured;
   const auto doc = ConfigDocument::parse("table: warned.plt\n", "inline");
   auto model = registry.create_named<LocalReflection>("photonic_crystal", doc.root(), ctx);
   const auto list = diagnostics().warnings();
-  diagnostics().set_echo(&std::cerr);
-  diagnostics().clear();
   REQUIRE(list.size() == 2);
   CHECK(list[0].code == "fdtd.not_converged");
   CHECK(list[0].message == "table " + (dir / "warned.plt").string() + ": 3 of 8 fdtd runs stopped at the time cap");
   CHECK(list[1].code == "fdtd.other_orders");
-  CHECK(echo.str().find("[fdtd.other_orders]") != std::string::npos);
+  CHECK(captured.echoed("fdtd.other_orders"));
   fs::remove_all(dir);
 }
 
