@@ -173,7 +173,7 @@ void add_bench_ladder_command(CLI::App& bench, AppContext& context) {
   auto b = std::make_shared<LadderBench>();
   auto* cmd = bench.add_subcommand(
       "ladder", "Every backend along its fidelity ladder against its reference: CSV, error-vs-time chart, table");
-  cmd->add_flag("--quick", b->quick, "Only the cheap rungs (the CI variant, about a minute)");
+  cmd->add_flag("--quick", b->quick, "Only the cheap rungs (the CI variant, 15-35 s)");
   cmd->add_option("--only", b->only, "Run only these ladders (backend names, repeatable)");
   cmd->add_option("--out", b->out, "Folder for ladder.csv and ladder.png")->capture_default_str();
   cmd->add_option("--record", b->record, "Markdown file to record the table in (e.g. docs/benchmarks.md)");
