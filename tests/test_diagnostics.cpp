@@ -61,13 +61,14 @@ TEST_CASE("diagnostics: a code is echoed once, counted, summarised on one line e
   REQUIRE(list.size() == 2);
   CHECK(list[0].code == "test.first");
   CHECK(list[0].count == 2);
-  CHECK(list[0].message == "first condition, x = 3");
+  // The echo shows the first raise; the kept message is the smallest (" again" < ", x").
+  CHECK(list[0].message == "first condition again, x = 4");
   CHECK(list[1].message == "second condition with a line break");
   CHECK(scope.echoed() ==
         "warning: first condition, x = 3 [test.first]\n"
         "warning: second condition with a line break [test.second]\n");
   CHECK(diagnostics().summary("; ") ==
-        "test.first: first condition, x = 3 (raised 2 times); test.second: second condition with a line break; ");
+        "test.first: first condition again, x = 4 (raised 2 times); test.second: second condition with a line break; ");
   diagnostics().set_echo(nullptr);
   warn("test.quiet", "not echoed");
   CHECK(scope.echoed().find("not echoed") == std::string::npos);
@@ -86,6 +87,21 @@ TEST_CASE("diagnostics: concurrent raises from many threads are all counted", "[
   REQUIRE(list.size() == 2);
   CHECK(list[0].count + list[1].count == 8000);
   CHECK(list[0].count == 4000);
+}
+
+TEST_CASE("diagnostics: the kept message does not depend on which thread raised first", "[diagnostics]") {
+  // Each thread raises the same code with its own numbers, in a scheduling-dependent order.
+  for (int run = 0; run < 5; ++run) {
+    CapturedWarnings scope;
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 6; ++t)
+      threads.emplace_back([t] {
+        for (int k = 0; k < 200; ++k) warn("test.instance", "instance " + std::to_string((t * 7 + k) % 10) + " is odd");
+      });
+    for (auto& th : threads) th.join();
+    CHECK(scope.message("test.instance") == "instance 0 is odd");
+    CHECK(scope.count("test.instance") == 1200);
+  }
 }
 
 TEST_CASE("feather material: warnings are stored (version 2), version 1 files still read", "[diagnostics][material]") {

@@ -24,6 +24,10 @@ void Diagnostics::warn(std::string_view code, std::string message) {
   for (auto& w : state_->warnings) {
     if (w.code == code) {
       ++w.count;
+      // Keep the smallest message, not the first: which instance or thread raises first depends
+      // on scheduling, the set of messages does not, so files written from the summary are the
+      // same on 1 or 2 threads.
+      if (message < w.message) w.message = std::move(message);
       return;
     }
   }

@@ -9,8 +9,10 @@
 //
 // Codes are stable dotted identifiers "<backend>.<condition>" (e.g. "fdtd.courant",
 // "bem.mesh_coarse"); tests assert on codes, people read messages. A code raised many times is
-// kept once with its first message and a count, so a warning inside a per-entry loop costs one
-// mutex and a map lookup, not a growing list.
+// kept once with a count and the lexicographically smallest of its messages (the first raise is
+// the one echoed; the kept text does not depend on which thread raised first, so metadata written
+// from it is deterministic), so a warning inside a per-entry loop costs one mutex and a scan of a
+// short list, not a growing list.
 #pragma once
 
 #include <cstddef>
@@ -24,13 +26,14 @@ namespace plumage {
 
 struct Warning {
   std::string code;
-  std::string message;     // of the first raise
+  std::string message;     // the smallest of its raises' messages (deterministic under threads)
   std::size_t count = 1;   // raises of this code since the last clear()
 };
 
 class Diagnostics {
  public:
-  // Thread-safe. The first raise of a code is echoed as "warning: <message> [<code>]".
+  // Thread-safe. The first raise of a code is echoed as "warning: <message> [<code>]"; its kept
+  // message is the smallest raised.
   void warn(std::string_view code, std::string message);
 
   std::vector<Warning> warnings() const;  // in order of first raise
@@ -72,7 +75,7 @@ class CapturedWarnings {
   std::string echoed() const;                        // everything echoed so far
   bool echoed(std::string_view code) const;          // "warning: … [<code>]" was echoed
   std::size_t count(std::string_view code) const;    // raises of `code` so far, 0 if none
-  std::string message(std::string_view code) const;  // its first message, "" if none
+  std::string message(std::string_view code) const;  // its kept message, "" if none
 
  private:
   std::unique_ptr<std::ostringstream> echo_;

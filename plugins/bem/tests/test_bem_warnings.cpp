@@ -233,7 +233,11 @@ TEST_CASE("bem warnings: GMRES stopped at its iteration limit raises bem.gmres_n
     CHECK(msg.find("550 nm") != std::string::npos);
     // both right-hand sides stopped: raised twice, kept once
     CHECK(diagnostics().warnings().front().count == 2);
-    CHECK(captured.echoed() == "warning: " + msg + " [bem.gmres_not_converged]\n");
+    // Echoed once (the first raise); the kept message is the smaller of the two (diagnostics.hpp).
+    const std::string echoed = captured.echoed();
+    CHECK(echoed.rfind("warning: bem: GMRES stopped after 5 iterations", 0) == 0);
+    CHECK(echoed.find("[bem.gmres_not_converged]\n") == echoed.size() - std::string("[bem.gmres_not_converged]\n").size());
+    CHECK(echoed.find("warning: ", 1) == std::string::npos);
   }
   {
     // enough iterations: converged, agrees with LU, nothing raised
