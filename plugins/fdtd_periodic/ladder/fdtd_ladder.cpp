@@ -16,6 +16,7 @@
 #include "plumage/accuracy_ladder.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/error.hpp"
+#include "layered_cell.hpp"
 #include "table_build.hpp"
 #include "tmm_reference.hpp"
 
@@ -59,13 +60,7 @@ std::vector<LadderPoint> run_fdtd_ladder(const AccuracyLadder::Options& options,
     const char* name = "keratin 300 nm / melanin 200 nm stack (25, 40) deg";
     for (double h_nm : hs_nm) {
       const double h = h_nm / 1000.0;
-      fdtd::Cell c;
-      c.ax = 2 * h;
-      c.materials = {fdtd::air_model(), fdtd::keratin_fit().model, fdtd::melanin_fit().model};
-      c.ambient = 0;
-      c.substrate = 1;
-      c.slabs = {{0.3, 0.5, 2}};
-      c.structure_depth = 0.5;
+      const fdtd::Cell c = fdtd_testing::layered_cell(h, 2, -1.0);
       fdtd::SimParams p;
       p.nx = 2;
       const double k0 = 2 * fdtd::kPi / 0.55;

@@ -10,27 +10,15 @@
 #include "plumage/plugin_registry.hpp"
 #include "plumage/table_builder.hpp"
 #include "stack_solver.hpp"
+#include "layered_cell.hpp"
 #include "table_build.hpp"
 
 using namespace plumage;
 
 namespace {
 
-// air | keratin 300 nm | melanin 200 nm | keratin, one grid cell wide (x-invariant).
-fdtd::Cell layered(double h_um, double lambda_um) {
-  fdtd::Cell c;
-  c.ax = h_um;
-  if (lambda_um > 0) {
-    const auto nk = fdtd::keratin_index(lambda_um), nm = fdtd::melanin_index(lambda_um);
-    c.materials = {fdtd::air_model(), fdtd::constant_model("keratin", nk * nk, lambda_um),
-                   fdtd::constant_model("melanin", nm * nm, lambda_um)};
-  } else {
-    c.materials = {fdtd::air_model(), fdtd::keratin_fit().model, fdtd::melanin_fit().model};
-  }
-  c.slabs = {{0.3, 0.5, 2}};
-  c.structure_depth = 0.5;
-  return c;
-}
+// air | keratin 300 nm | melanin 200 nm | keratin, one grid cell wide (layered_cell.hpp).
+fdtd::Cell layered(double h_um, double lambda_um) { return fdtd_testing::layered_cell(h_um, 1, lambda_um); }
 
 multilayer::StackReflection closed_form(double lambda_nm, double cos_alpha) {
   const std::vector<Complex> index{1.0, Material::keratin().index(lambda_nm),

@@ -17,6 +17,7 @@
 #include "plumage/error.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/table_builder.hpp"
+#include "layered_cell.hpp"
 #include "table_build.hpp"
 
 using namespace plumage;
@@ -28,23 +29,8 @@ bool has_note(const ReflectionTable& t, std::string_view code) {
   return n.find("WARNING:") != std::string::npos && n.find("[" + std::string(code) + "]") != std::string::npos;
 }
 
-// air | keratin 300 nm | melanin 200 nm | keratin, `nx` grid cells of h wide. nx = 2 makes the
-// Bloch harmonics reach the x Nyquist wavenumber (k_x h = π), i.e. the grid attains the full 2D
-// Courant bound (a 1-cell grid has no x Nyquist mode and tolerates a larger dt).
-fdtd::Cell layered(double h_um, int nx, double lambda_um) {
-  fdtd::Cell c;
-  c.ax = h_um * nx;
-  if (lambda_um > 0) {
-    const auto nk = fdtd::keratin_index(lambda_um), nm = fdtd::melanin_index(lambda_um);
-    c.materials = {fdtd::air_model(), fdtd::constant_model("keratin", nk * nk, lambda_um),
-                   fdtd::constant_model("melanin", nm * nm, lambda_um)};
-  } else {
-    c.materials = {fdtd::air_model(), fdtd::keratin_fit().model, fdtd::melanin_fit().model};
-  }
-  c.slabs = {{0.3, 0.5, 2}};
-  c.structure_depth = 0.5;
-  return c;
-}
+// The layered reference cell (layered_cell.hpp).
+fdtd::Cell layered(double h_um, int nx, double lambda_um) { return fdtd_testing::layered_cell(h_um, nx, lambda_um); }
 
 // A cheap grating with a long period: keratin with one melanin rod per period a_x, 20 nm grid.
 fdtd::Cell grating(double ax_um, double lambda_um) {
