@@ -348,6 +348,7 @@ struct Options {
   std::vector<std::string> only;  // run only these methods (the reference always runs)
   std::string reference;          // overrides the config's reference
   std::vector<double> wavelengths;  // run only these of the config's wavelengths (nm)
+  std::optional<std::int64_t> instance;  // overrides the config's instance (signed: -1 is refused, not wrapped)
 };
 
 struct MethodRun {
@@ -419,6 +420,12 @@ void run(AppContext& context, const Options& o) {
     std::erase_if(c.lambdas, [&](double x) {
       return std::none_of(o.wavelengths.begin(), o.wavelengths.end(), [&](double l) { return std::abs(x - l) < 1e-9; });
     });
+  }
+  // Another barbule instance of the same comparison (a study over instances is one config and a
+  // loop, not one config per instance).
+  if (o.instance) {
+    if (*o.instance < 0) throw UsageError("--instance: expected a non-negative integer, got " + std::to_string(*o.instance));
+    c.instance = static_cast<std::uint64_t>(*o.instance);
   }
   const fs::path out_dir = o.out.empty() ? fs::path(c.name + "-compare") : fs::path(o.out);
 
@@ -695,6 +702,7 @@ void add_compare_command(CLI::App& app, AppContext& context) {
   cmd->add_option("--reference", o->reference, "Compare against this method instead of the config's reference");
   cmd->add_option("--wavelengths", o->wavelengths, "Run only these of the config's wavelengths (nm, comma-separated)")
       ->delimiter(',');
+  cmd->add_option("--instance", o->instance, "Barbule instance to compare on instead of the config's `instance`");
   cmd->callback([&context, o] { run(context, *o); });
 }
 

@@ -143,6 +143,39 @@ TEST_CASE("plumage compare: a tiny approximate-against-approximate comparison", 
   CHECK_THAT(r.output, Catch::Contains("(reference)") && Catch::Contains("incident_and_reflected"));
 }
 
+TEST_CASE("plumage compare --instance: another barbule of the same comparison", "[cli][compare]") {
+  // The config's instance (0) against --instance 0 and --instance 2: the same patterns, then different
+  // ones; the files name the instance that was run.
+  const auto patterns_of = [](const fs::path& out, const std::string& extra) {
+    const auto r = run("compare " + source("tests/cli/data/compare-tiny.yaml") + " --out " + out.string() +
+                       " --no-pictures --only reflected --wavelengths 550" + extra);
+    INFO(r.output);
+    REQUIRE(r.status == 0);
+    std::vector<double> u;
+    for (const auto& p : read_csv(out / "tiny-patterns.csv")) u.push_back(num(p, "density_per_rad"));
+    return std::make_pair(u, r.output);
+  };
+  const auto [config_default, out_default] = patterns_of(scratch("instance-default"), "");
+  const auto [explicit0, out0] = patterns_of(scratch("instance-0"), " --instance 0");
+  const fs::path dir2 = scratch("instance-2");
+  const auto [other, out2] = patterns_of(dir2, " --instance 2");
+  CHECK_THAT(out_default, Catch::Contains("instance 0,"));
+  CHECK_THAT(out2, Catch::Contains("instance 2,"));
+  std::ifstream header(dir2 / "tiny-metrics.csv");
+  std::string first;
+  std::getline(header, first);
+  CHECK_THAT(first, Catch::Contains("instance 2,"));
+  REQUIRE(config_default.size() == other.size());
+  CHECK(config_default == explicit0);
+  double diff = 0, norm = 0;
+  for (std::size_t i = 0; i < other.size(); ++i) diff += std::abs(other[i] - config_default[i]), norm += std::abs(config_default[i]);
+  CHECK(diff > 1e-3 * norm);  // another barbule, another pattern
+  const fs::path bad_dir = scratch("instance-bad");
+  const auto bad = run("compare " + source("tests/cli/data/compare-tiny.yaml") + " --instance -1 --out " + bad_dir.string());
+  CHECK(bad.status != 0);
+  CHECK(!fs::exists(bad_dir));
+}
+
 TEST_CASE("plumage compare: config errors name file:line and field, nothing is written", "[cli][compare]") {
   const fs::path dir = scratch("errors");
   fs::create_directories(dir);
