@@ -77,10 +77,13 @@ TEST_CASE("plumage check validates scenes and the species variants their materia
 }
 
 TEST_CASE("plumage check validates comparison configs with their solvers", "[cli]") {
-  auto r = run("check " + source("configs/compare/rockdove.yaml") + " " + source("configs/compare/mallard.yaml"));
+  // Every shipped comparison.
+  auto r = run("check " + source("configs/compare/rockdove.yaml") + " " + source("configs/compare/mallard.yaml") + " " +
+               source("configs/compare/hummingbird.yaml") + " " + source("configs/compare/starling.yaml"));
   INFO(r.output);
   CHECK(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("ok (comparison mallard, 7 methods (reference fullwave_rods)"));
+  CHECK_THAT(r.output, Catch::Contains("ok (comparison starling, 3 methods (reference fullwave_exact)"));
   // A solver option that is not one of the choices: file, line and the valid ones.
   const fs::path bad = scratch() / "bad_compare.yaml";
   std::ofstream(bad) << "comparison: bad\nspecies: " << source("configs/species/rockdove.yaml")
