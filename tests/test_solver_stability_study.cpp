@@ -27,6 +27,7 @@
 #include "plumage/diagnostics.hpp"
 #include <iostream>
 #include "plumage/far_field.hpp"
+#include "plumage/pattern_metrics.hpp"
 #include "plumage/species_config.hpp"
 #include "plumage/structure_generator.hpp"
 #include "solver/surface_validity.hpp"
@@ -84,16 +85,11 @@ std::filesystem::path write_config(const Body& b, const std::string& solver) {
   return file;
 }
 
-std::vector<double> mean_pattern(const FarField& f) {
-  std::vector<double> u(f.phi_o_rad.size());
-  for (std::size_t j = 0; j < u.size(); ++j) u[j] = 0.5 * (f.reflectance_density(0, j) + f.reflectance_density(1, j));
-  return u;
-}
-
-double rel_l2(const std::vector<double>& a, const std::vector<double>& ref) {
-  double num = 0, den = 0;
-  for (std::size_t j = 0; j < a.size(); ++j) num += (a[j] - ref[j]) * (a[j] - ref[j]), den += ref[j] * ref[j];
-  return std::sqrt(num / den);
+// Both solvers under the same Gaussian footprint (window_fraction = kWindowFraction).
+constexpr const char* kApproximateSolver = "{type: approximate, window_fraction: 0.2}";
+std::string bem_solver(int points_per_wavelength) {
+  return "{type: bem, incidence: beam, window_fraction: 0.2, points_per_wavelength: " +
+         std::to_string(points_per_wavelength) + "}";
 }
 
 }  // namespace
@@ -140,10 +136,8 @@ TEST_CASE("approximate solver against BEM on rough and curved films", "[.][stabi
   double worst_inside = 0.0, warned_sum = 0.0;
   int inside = 0, warned = 0, warned_above = 0;
   for (const Body& b : bodies) {
-    const auto approx = load_species_config(write_config(b, "{type: approximate, window_fraction: 0.2}"), testing::registry());
-    const auto bem = load_species_config(
-        write_config(b, "{type: bem, incidence: beam, window_fraction: 0.2, points_per_wavelength: 20}"),
-        testing::registry());
+    const auto approx = load_species_config(write_config(b, kApproximateSolver), testing::registry());
+    const auto bem = load_species_config(write_config(b, bem_solver(20)), testing::registry());
     const CrossSection cs = approx.structure->generate(0);
     const auto stats = detail::top_surface_statistics(cs, kWindowFraction);
     const double mean_radius_um = stats.mean_curvature_per_nm > 0 ? 1e-3 / stats.mean_curvature_per_nm : 0.0;
@@ -160,7 +154,7 @@ TEST_CASE("approximate solver against BEM on rough and curved films", "[.][stabi
       const auto fb = bem.solver->solve(*pb, lambda, 0.0, phis, dirs);
       const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       for (std::size_t a = 0; a < phis.size(); ++a) {
-        const double e = rel_l2(mean_pattern(fa[a]), mean_pattern(fb[a]));
+        const double e = unpolarised_relative_l2(fa[a], fb[a]);
         sum += e;
         const double dphi = kPi / 400;
         const double ra = 0.5 * (fa[a].reflected_fraction(0, dphi) + fa[a].reflected_fraction(1, dphi));
@@ -212,10 +206,8 @@ TEST_CASE("approximate solver against BEM toward grazing incidence", "[.][stabil
   // Flat films of two widths (the criterion must follow the window, not the angle alone) and a
   // rough one (slope 0.1 nominal, 0.076 measured: inside the roughness range at φ_i ≤ 30°).
   for (const Body& b : {Body{0.0, 1.0, 0.0, 1, 12.0}, Body{0.0, 1.0, 0.0, 1}, Body{0.1, 1.0, 0.0, 1}}) {
-    const auto approx = load_species_config(write_config(b, "{type: approximate, window_fraction: 0.2}"), testing::registry());
-    const auto bem = load_species_config(
-        write_config(b, "{type: bem, incidence: beam, window_fraction: 0.2, points_per_wavelength: 20}"),
-        testing::registry());
+    const auto approx = load_species_config(write_config(b, kApproximateSolver), testing::registry());
+    const auto bem = load_species_config(write_config(b, bem_solver(20)), testing::registry());
     const CrossSection cs = approx.structure->generate(0);
     const auto stats = detail::top_surface_statistics(cs, kWindowFraction);
     const auto pa = approx.solver->prepare(cs, approx.reflection);
@@ -231,7 +223,7 @@ TEST_CASE("approximate solver against BEM toward grazing incidence", "[.][stabil
         const double one[1] = {phis[a]};
         const auto fa = approx.solver->solve(*pa, lambda, theta, one, dirs);
         const bool flagged = diagnostics().has("approx.grazing");
-        const double e = rel_l2(mean_pattern(fa[0]), mean_pattern(fb[a]));
+        const double e = unpolarised_relative_l2(fa[0], fb[a]);
         const double dphi = kPi / 400;
         const double ra = 0.5 * (fa[0].reflected_fraction(0, dphi) + fa[0].reflected_fraction(1, dphi));
         const double rb = 0.5 * (fb[a].reflected_fraction(0, dphi) + fb[a].reflected_fraction(1, dphi));
@@ -239,11 +231,11 @@ TEST_CASE("approximate solver against BEM toward grazing incidence", "[.][stabil
         const double q = detail::horizon_spill(stats, lambda, theta, phis[a]);
         // The pattern's shape alone (each normalised to unit integral): the BEM's Φ_i of the
         // Gaussian footprint is itself approximate when the projected footprint nears λ.
-        auto ua = mean_pattern(fa[0]), ub = mean_pattern(fb[a]);
+        auto ua = unpolarised_density(fa[0]), ub = unpolarised_density(fb[a]);
         double sa = 0, sb = 0;
         for (std::size_t j = 0; j < ua.size(); ++j) sa += ua[j], sb += ub[j];
         for (std::size_t j = 0; j < ua.size(); ++j) ua[j] /= sa, ub[j] /= sb;
-        const double shape = rel_l2(ua, ub);
+        const double shape = relative_l2(ua, ub);
         csv << b.width_um << ',' << b.rms_slope << ',' << b.correlation_um << ',' << b.seed << ',' << lambda << ','
             << theta_deg << ',' << rad_to_deg(phis[a]) << ',' << c << ',' << q << ',' << e << ',' << shape << ',' << ra
             << ',' << rb << ',' << flagged << '\n';
@@ -302,10 +294,10 @@ TEST_CASE("BEM at 20 against 30 points per wavelength on the study's bodies", "[
   double worst = 0.0;
   for (const Body& b : {Body{0.2, 0.5, 0.0, 1}, Body{0.0, 1.0, 0.0, 1, 2.0, 1.0}}) {
     const auto coarse = load_species_config(
-        write_config(b, "{type: bem, incidence: beam, window_fraction: 0.2, points_per_wavelength: 20}"),
+        write_config(b, bem_solver(20)),
         testing::registry());
     const auto fine = load_species_config(
-        write_config(b, "{type: bem, incidence: beam, window_fraction: 0.2, points_per_wavelength: 30}"),
+        write_config(b, bem_solver(30)),
         testing::registry());
     const CrossSection cs = coarse.structure->generate(0);
     const auto pc = coarse.solver->prepare(cs, coarse.reflection);
@@ -314,7 +306,7 @@ TEST_CASE("BEM at 20 against 30 points per wavelength on the study's bodies", "[
       const auto fc = coarse.solver->solve(*pc, lambda, 0.0, phis, dirs);
       const auto ff = fine.solver->solve(*pf, lambda, 0.0, phis, dirs);
       for (std::size_t a = 0; a < phis.size(); ++a) {
-        const double e = rel_l2(mean_pattern(fc[a]), mean_pattern(ff[a]));
+        const double e = unpolarised_relative_l2(fc[a], ff[a]);
         std::printf("%s, %.0f nm, phi_i %.0f: BEM 20 vs 30 ppw relative L2 %.2e\n",
                     b.cylinder_um > 0 ? "melanin cylinder 1 um" : "rough film slope 0.2 tau 0.5", lambda,
                     rad_to_deg(phis[a]), e);

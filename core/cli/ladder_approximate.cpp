@@ -20,6 +20,7 @@
 #include "plumage/conventions.hpp"
 #include "plumage/error.hpp"
 #include "plumage/far_field.hpp"
+#include "plumage/pattern_metrics.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/scattering_solver.hpp"
 #include "plumage/species_config.hpp"
@@ -29,22 +30,6 @@
 namespace plumage::cli {
 
 namespace {
-
-// Unpolarised reflectance density per pattern direction.
-std::vector<double> unpolarised_density(const FarField& ff) {
-  std::vector<double> d(ff.phi_o_rad.size());
-  for (std::size_t j = 0; j < d.size(); ++j) d[j] = 0.5 * (ff.reflectance_density(0, j) + ff.reflectance_density(1, j));
-  return d;
-}
-
-double relative_l2(const std::vector<double>& a, const std::vector<double>& ref) {
-  double num = 0, den = 0;
-  for (std::size_t j = 0; j < a.size(); ++j) {
-    num += (a[j] - ref[j]) * (a[j] - ref[j]);
-    den += ref[j] * ref[j];
-  }
-  return std::sqrt(num / den);
-}
 
 class ApproximateLadder final : public AccuracyLadder {
  public:
@@ -94,7 +79,7 @@ class ApproximateLadder final : public AccuracyLadder {
     };
     auto error_against = [&](const std::vector<FarField>& a, const std::vector<FarField>& ref) {
       double e = 0.0;
-      for (std::size_t k = 0; k < ref.size(); ++k) e += relative_l2(unpolarised_density(a[k]), unpolarised_density(ref[k]));
+      for (std::size_t k = 0; k < ref.size(); ++k) e += unpolarised_relative_l2(a[k], ref[k]);
       return e / static_cast<double>(ref.size());
     };
 
