@@ -13,7 +13,7 @@
 #include <regex>
 #include <sstream>
 
-#include "bench_record.hpp"
+#include "plumage/bench_record.hpp"
 #include "segment_config.hpp"
 #include "commands.hpp"
 #include "plumage/config_document.hpp"

@@ -14,7 +14,7 @@
 #include <memory>
 #include <sstream>
 
-#include "bench_record.hpp"
+#include "plumage/bench_record.hpp"
 #include "commands.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"

@@ -8,7 +8,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "bench_record.hpp"
+#include "plumage/bench_record.hpp"
 #include "commands.hpp"
 #include "plumage/species_config.hpp"
 

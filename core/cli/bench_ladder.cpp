@@ -12,8 +12,8 @@
 #include <set>
 #include <sstream>
 
-#include "bench_record.hpp"
-#include "chart.hpp"
+#include "plumage/bench_record.hpp"
+#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "plumage/accuracy_ladder.hpp"
 #include "plumage/atomic_file.hpp"

@@ -17,7 +17,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "bench_record.hpp"
+#include "plumage/bench_record.hpp"
 #include "commands.hpp"
 #include "plumage/error.hpp"
 #include "plumage/exr.hpp"

@@ -23,7 +23,7 @@
 
 #include <tbb/parallel_for.h>
 
-#include "chart.hpp"
+#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "plumage/colour.hpp"
 #include "plumage/error.hpp"

@@ -17,10 +17,10 @@
 #include <set>
 #include <sstream>
 
-#include "bench_record.hpp"
+#include "plumage/bench_record.hpp"
 #include "characterize_records.hpp"
 #include "characterize_run.hpp"
-#include "chart.hpp"
+#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "plumage/diagnostics.hpp"
 #include "grid_parse.hpp"

@@ -20,7 +20,7 @@
 #include <set>
 #include <sstream>
 
-#include "chart.hpp"
+#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "plumage/atomic_file.hpp"
 #include "plumage/colour.hpp"

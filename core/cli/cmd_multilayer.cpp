@@ -4,7 +4,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "chart.hpp"
+#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "grid_parse.hpp"
 #include "plumage/layer_profile.hpp"

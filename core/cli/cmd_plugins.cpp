@@ -3,6 +3,8 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "plumage/atomic_file.hpp"
+#include "plumage/config_sections.hpp"
 
 namespace plumage::cli {
 
@@ -43,31 +45,48 @@ void describe_plugin(AppContext& context, const std::string& type) {
     std::cout << "  no parameters\n";
     return;
   }
-  std::size_t wn = 4, wt = 4, wu = 4, wd = 7;
+  std::size_t wn = 4, wt = 4, wu = 4, wd = 7, wr = 5;
   for (const auto& p : info.params) {
     wn = std::max(wn, p.name.size());
     wt = std::max(wt, p.type.size());
     wu = std::max(wu, p.unit.size());
     wd = std::max(wd, p.default_value.size());
+    wr = std::max(wr, p.range.size());
   }
-  auto row = [&](const std::string& a, const std::string& b, const std::string& c,
-                 const std::string& d, const std::string& e) {
-    std::cout << "  " << std::left << std::setw(static_cast<int>(wn + 2)) << a
-              << std::setw(static_cast<int>(wt + 2)) << b << std::setw(static_cast<int>(wu + 2))
-              << c << std::setw(static_cast<int>(wd + 2)) << d << e << "\n";
+  auto row = [&](const std::string& a, const std::string& b, const std::string& c, const std::string& d,
+                 const std::string& r, const std::string& e) {
+    std::cout << "  " << std::left << std::setw(static_cast<int>(wn + 2)) << a << std::setw(static_cast<int>(wt + 2))
+              << b << std::setw(static_cast<int>(wu + 2)) << c << std::setw(static_cast<int>(wd + 2)) << d
+              << std::setw(static_cast<int>(wr + 2)) << r << e << "\n";
   };
-  row("NAME", "TYPE", "UNIT", "DEFAULT", "MEANING");
-  for (const auto& p : info.params) row(p.name, p.type, p.unit, p.default_value, p.meaning);
+  row("NAME", "TYPE", "UNIT", "DEFAULT", "RANGE", "MEANING");
+  for (const auto& p : info.params)
+    row(p.name, p.type, p.unit, p.default_value, p.range, p.condition.empty() ? p.meaning : "(" + p.condition + ") " + p.meaning);
 }
 
 }  // namespace
 
 void add_plugins_command(CLI::App& app, AppContext& context) {
   auto* cmd = app.add_subcommand("plugins", "List the plug-ins found (kind, type, version, library)");
-  auto* describe = cmd->add_subcommand("describe", "Print a plug-in's parameter table");
+  auto* describe = cmd->add_subcommand("describe", "Print a plug-in's parameter table (or all of them as markdown)");
   auto type = std::make_shared<std::string>();
-  describe->add_option("type", *type, "Plug-in type name, e.g. multilayer")->required();
-  describe->callback([&context, type] { describe_plugin(context, *type); });
+  auto markdown = std::make_shared<bool>(false);
+  auto out = std::make_shared<std::string>();
+  describe->add_option("type", *type, "Plug-in type name, e.g. multilayer");
+  describe->add_flag("--markdown", *markdown,
+                     "Every config section and plug-in type as markdown (docs/parameters.md)");
+  describe->add_option("--out", *out, "With --markdown: write this file instead of stdout");
+  describe->callback([&context, type, markdown, out] {
+    if (*markdown) {
+      if (!type->empty()) throw UsageError("--markdown describes every type; give no type with it");
+      const std::string text = parameters_markdown(context.registry());
+      if (out->empty()) std::cout << text;
+      else write_text_atomically(*out, text);
+      return;
+    }
+    if (type->empty()) throw UsageError("describe: give a plug-in type (see `plumage plugins`) or --markdown");
+    describe_plugin(context, *type);
+  });
   cmd->callback([&context, cmd] {
     if (cmd->get_subcommands().empty()) list_plugins(context);
   });

@@ -9,7 +9,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "chart.hpp"
+#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "plumage/diagnostics.hpp"
 #include "grid_parse.hpp"

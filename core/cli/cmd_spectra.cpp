@@ -6,7 +6,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "chart.hpp"
+#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "grid_parse.hpp"
 #include "plumage/atomic_file.hpp"

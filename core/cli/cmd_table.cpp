@@ -13,7 +13,7 @@
 #include <memory>
 #include <sstream>
 
-#include "chart.hpp"
+#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "plumage/diagnostics.hpp"
 #include "plumage/config_document.hpp"

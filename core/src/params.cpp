@@ -93,6 +93,8 @@ bool ParamView::is_null() const { return !state_->node || state_->node.IsNull();
 
 void ParamView::accept(std::string_view key) const { state_->known.insert(std::string(key)); }
 
+std::vector<std::string> ParamView::known_keys() const { return {state_->known.begin(), state_->known.end()}; }
+
 bool ParamView::has(std::string_view key) const {
   accept(key);
   if (!state_->node.IsMap()) return false;

@@ -207,6 +207,19 @@ std::string unknown_type_message(const PluginRegistry& registry, std::string_vie
   return msg;
 }
 
+// One declaration per parameter (param_table.hpp): a factory may read only the keys its table
+// declares (top-level names of PluginInfo::params), so that describe, docs and reading agree.
+void check_declared(const PluginRegistry::Entry& entry, const ParamView& params, std::string_view type_key) {
+  std::vector<std::string> declared;
+  for (const ParamSpec& spec : entry.info.params) declared.push_back(spec.name.substr(0, spec.name.find('.')));
+  for (const std::string& key : params.known_keys()) {
+    if (key == type_key || std::find(declared.begin(), declared.end(), key) != declared.end()) continue;
+    throw PluginError(entry.info.kind + " '" + entry.info.type + "' (" +
+                      (entry.library.empty() ? std::string("core") : entry.library.string()) +
+                      ") read the parameter '" + key + "', which its parameter table does not declare");
+  }
+}
+
 }  // namespace
 
 std::unique_ptr<PluginObject> PluginRegistry::create_erased(std::string_view kind,
@@ -217,6 +230,7 @@ std::unique_ptr<PluginObject> PluginRegistry::create_erased(std::string_view kin
   const Entry* entry = find(kind, type);
   if (!entry) section.fail(type_key, unknown_type_message(*this, kind, type));
   auto object = entry->factory(section, context);
+  check_declared(*entry, section, type_key);
   section.finish();
   return object;
 }
@@ -227,6 +241,7 @@ std::unique_ptr<PluginObject> PluginRegistry::create_named_erased(
   const Entry* entry = find(kind, type);
   if (!entry) throw PluginError(unknown_type_message(*this, kind, type));
   auto object = entry->factory(params, context);
+  check_declared(*entry, params, {});
   params.finish();
   return object;
 }

@@ -95,7 +95,20 @@ std::vector<std::string> species_variants(const std::filesystem::path& file) {
 
 SpeciesConfig load_species_config(const std::filesystem::path& file, const PluginRegistry& registry,
                                   const std::string& requested_variant) {
-  auto doc = ConfigDocument::load(file);
+  return load_species_config(ConfigDocument::load(file), registry, requested_variant);
+}
+
+void prepare_species(const SpeciesConfig& config, const PreparationOptions& options) {
+  if (config.reflection) config.reflection->prepare(options);
+}
+
+std::string pending_preparation(const SpeciesConfig& config) {
+  return config.reflection ? config.reflection->pending_preparation() : std::string();
+}
+
+SpeciesConfig load_species_config(const ConfigDocument& doc, const PluginRegistry& registry,
+                                  const std::string& requested_variant) {
+  const std::filesystem::path file = doc.path();
   ParamView raw = doc.root();
 
   SpeciesConfig config;
@@ -122,7 +135,7 @@ SpeciesConfig load_species_config(const std::filesystem::path& file, const Plugi
     const YAML::Node& base = raw.state()->node;
     tree = merged(base, base["variants"][config.variant]);
   }
-  ParamView root = make_root_view(tree, file.string());
+  ParamView root = make_root_view(tree, raw.file());
   root.accept("variants");
   root.accept("variant");
   config.root = root;

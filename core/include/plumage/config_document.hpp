@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "plumage/params.hpp"
 
@@ -14,6 +16,19 @@ class ConfigDocument {
   static ConfigDocument load(const std::filesystem::path& file);
   // Parses YAML text held in memory; `name` stands for the file name in messages.
   static ConfigDocument parse(const std::string& text, const std::string& name);
+  // A document made from `base` (a view into another document) with values replaced: each
+  // override is (dotted path below `base`, YAML text of the new value). The tree is copied as
+  // nodes, not as text, so every untouched value keeps its file, line and column in messages.
+  // A path must name an existing key unless `create` is set (then missing maps are made).
+  // Throws ConfigError at `where` (a CLI flag, a config field) naming a path that does not exist.
+  // The derived document resolves relative file names against `directory`.
+  struct Override {
+    std::string path;       // "outline.width_um"
+    std::string yaml;       // "10", "{a: 1}", "[1, 2]"
+    bool create = false;    // add the key (and any missing maps on the way) if absent
+  };
+  static ConfigDocument derive(const ParamView& base, const std::vector<Override>& overrides,
+                               const std::filesystem::path& directory, const std::string& name);
 
   ParamView root() const { return root_; }
   const std::filesystem::path& path() const { return path_; }
@@ -24,11 +39,16 @@ class ConfigDocument {
 
  private:
   std::filesystem::path path_;
+  std::filesystem::path directory_;  // set for derived documents
   std::string hash_;
   ParamView root_;
 };
 
 // Stable 64-bit FNV-1a digest, as 16 hex digits. Used for cache keys and file checksums.
 std::string fnv1a_hex(std::string_view bytes);
+
+// The meaning of a config subtree as one line of text, independent of comments, layout, quoting
+// style and map key order (keys sorted): what a cache key hashes. "a: 1 # x" and "{a: '1'}" agree.
+std::string canonical_text(const ParamView& view);
 
 }  // namespace plumage

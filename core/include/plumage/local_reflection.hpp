@@ -2,7 +2,9 @@
 // §4.3). Implementations: "multilayer" (plugins/multilayer), "photonic_crystal" (table lookup).
 #pragma once
 
+#include <functional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "plumage/conventions.hpp"
@@ -33,9 +35,28 @@ struct JonesReflection {
   Complex pp{0.0, 0.0};
 };
 
+// How the explicit preparation step (issue 22: no hidden heavy work) may satisfy a model's
+// one-time needs, such as a photonic crystal's reflection table.
+struct PreparationOptions {
+  // build: as configured; preview: a small preview-fidelity table instead of a larger one (a test
+  // shortcut: the model raises a warning, so every file made with it says so); never: refuse.
+  enum class Tables { build, preview, never };
+  Tables tables = Tables::build;
+  // (work done, total work, what); may be empty.
+  std::function<void(std::size_t done, std::size_t total, std::string_view what)> progress;
+};
+
 class LocalReflection : public PluginObject {
  public:
   static constexpr std::string_view plugin_kind = "local_reflection";
+
+  // The heavy one-time work prepare() would do, in one line ("" when there is none or it is
+  // done), e.g. "build the reflection table of mallard-green (50 x 20 x 50 entries)". Creating a
+  // model never does such work; reflect() of a model that needs preparation throws.
+  virtual std::string pending_preparation() const { return {}; }
+  // Does that work (idempotent; not concurrently with reflect()). Throws Error when the options
+  // refuse it (Tables::never) or it fails.
+  virtual void prepare(const PreparationOptions& options) const {}
 
   struct Request {
     double lambda_nm = 550.0;

@@ -87,6 +87,8 @@ class ParamView {
 
   // Mark a key as known without reading it (e.g. a key consumed by the host).
   void accept(std::string_view key) const;
+  // The keys of this map read (or accepted) so far, sorted; present in the file or not.
+  std::vector<std::string> known_keys() const;
 
   // Reject unknown keys in this map and in every child view handed out so far, recursively.
   void finish() const;

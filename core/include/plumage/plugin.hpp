@@ -25,13 +25,16 @@ class PluginObject {
   virtual ~PluginObject() = default;
 };
 
-// One row of a plug-in's parameter table, printed by `plumage plugins describe <type>`.
+// One row of a parameter table (param_table.hpp builds them from the declarations), printed by
+// `plumage plugins describe <type>` and docs/parameters.md.
 struct ParamSpec {
-  std::string name;
-  std::string type;           // number, integer, text, bool, interval, list, map, material...
+  std::string name;           // dotted for nested maps: "outline.width_um"
+  std::string type;           // number, integer, text, bool, choice, interval, list, map, material...
   std::string unit;           // nm, um, deg, 1 ... ("-" when dimensionless)
   std::string default_value;  // "required" when there is no default
   std::string meaning;
+  std::string range;          // "> 0", "in [0, 1]", "dense | gmres"; empty when unbounded
+  std::string condition;      // when the parameter applies ("model: films"); empty: always
 };
 
 struct PluginInfo {

@@ -64,6 +64,16 @@ struct SpeciesConfig {
 // creating the plug-ins it names. Throws ConfigError on any problem.
 SpeciesConfig load_species_config(const std::filesystem::path& file, const PluginRegistry& registry,
                                   const std::string& variant = "");
+// The same from a document in memory (e.g. ConfigDocument::derive of a species file with the
+// outline width replaced); relative file names resolve against doc.directory().
+SpeciesConfig load_species_config(const ConfigDocument& doc, const PluginRegistry& registry,
+                                  const std::string& variant = "");
+
+// The explicit preparation step (issue 22): does every model's pending one-time work (a crystal
+// reflection table to build or load) with progress, before any simulation. Idempotent.
+void prepare_species(const SpeciesConfig& config, const PreparationOptions& options);
+// What prepare_species would do, one line per model ("" for none).
+std::string pending_preparation(const SpeciesConfig& config);
 
 // The variant names declared in a species file (for `plumage check`, which validates each).
 std::vector<std::string> species_variants(const std::filesystem::path& file);

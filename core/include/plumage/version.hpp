@@ -6,7 +6,8 @@ namespace plumage {
 // Bumped whenever a change to a header in core/include/plumage/ breaks binary compatibility with
 // plug-ins built against an earlier SDK (a virtual function added, a struct layout changed...).
 // The host refuses a plug-in whose exported plumage_abi_version differs.
-inline constexpr int kAbiVersion = 1;
+// 2: ParamSpec gained range and condition (issue 22).
+inline constexpr int kAbiVersion = 2;
 
 inline constexpr const char* kVersionString = "0.1.0";
 

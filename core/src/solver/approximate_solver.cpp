@@ -1,5 +1,7 @@
 #include "approximate_solver.hpp"
 
+#include "plumage/param_table.hpp"
+
 #include <Eigen/Dense>
 
 #include <cmath>
@@ -430,44 +432,55 @@ FarField ApproximateSolver::solve_direct_sum(const Prepared& prepared, double la
   return ff;
 }
 
+namespace {
+
+// The solver's parameters, declared once (param_table.hpp).
+struct ApproximateParams {
+  ApproximateSolver::Currents currents = ApproximateSolver::Currents::reflected;
+  double window_fraction = 0.25;
+  ApproximateSolver::Normalisation normalisation = ApproximateSolver::Normalisation::capped;
+  bool chunked = true;
+  int reflection_samples = 1;
+};
+
+const ParamTable<ApproximateParams>& approximate_params() {
+  using C = ApproximateSolver::Currents;
+  using N = ApproximateSolver::Normalisation;
+  static const auto table =
+      ParamTable<ApproximateParams>{}
+          .choice("currents", &ApproximateParams::currents,
+                  {{"reflected", C::reflected}, {"incident_and_reflected", C::incident_and_reflected}}, C::reflected,
+                  "reflected (E_r, H_r only, reference code) | incident_and_reflected (Eq. 2)")
+          .number("window_fraction", &ApproximateParams::window_fraction, "1", 0.25, Limits::positive(),
+                  "Gaussian window w(x) = exp(-x^2/s^2) with s = window_fraction * width")
+          .choice("normalisation", &ApproximateParams::normalisation,
+                  {{"capped", N::capped}, {"lossless", N::lossless}, {"eq9", N::eq9}}, N::capped,
+                  "capped (Eq. 9, raised to the lossless reference where that radiates more) | lossless (power the "
+                  "same currents radiate with |r| set to 1 at every node) | eq9 (paper Eq. 9)")
+          .integer("reflection_samples", &ApproximateParams::reflection_samples, "1", 1, Limits::closed(1, 16),
+                   "local reflection and currents at this many sub-samples per segment, tent-weighted per node "
+                   "(1: nodes only)")
+          .choice("far_field", &ApproximateParams::chunked, {{"chunked", true}, {"exact", false}}, true,
+                  "chunked (band-limited interpolation, <= 1e-5 of exact) | exact (every node x direction)");
+  return table;
+}
+
+}  // namespace
+
 void register_approximate_solver(PluginRegistry& registry) {
-  static constexpr std::string_view kCurrents[] = {"reflected", "incident_and_reflected"};
-  static constexpr std::string_view kNormalisations[] = {"capped", "lossless", "eq9"};
-  static constexpr std::string_view kFarFields[] = {"chunked", "exact"};
   registry.builtin_registrar().add<ScatteringSolver>(
-      {.kind = "",
-       .type = "approximate",
+      {.type = "approximate",
        .version = "1.1.0",
        .summary = "paper §4: local reflection under each top node, Eq. 2 currents, 2.5D far "
                   "field on the specular cone (exact tent × plane-wave integrals, chunked "
                   "band-limited interpolation), Eq. 9 normalisation capped by its own lossless reference",
-       .params = {{"currents", "choice", "-", "reflected",
-                   "reflected (E_r, H_r only, reference code) | incident_and_reflected (Eq. 2)"},
-                  {"window_fraction", "number", "1", "0.25",
-                   "Gaussian window w(x) = exp(-x^2/s^2) with s = window_fraction * width"},
-                  {"normalisation", "choice", "-", "capped",
-                   "capped (Eq. 9, raised to the lossless reference where that radiates more) | lossless (power the "
-                   "same currents radiate with |r| set to 1 at every node) | eq9 (paper Eq. 9)"},
-                  {"reflection_samples", "integer", "-", "1",
-                   "local reflection and currents at this many sub-samples per segment, tent-weighted per node (1: nodes only)"},
-                  {"far_field", "choice", "-", "chunked",
-                   "chunked (band-limited interpolation, <= 1e-5 of exact) | exact (every node x direction)"}}},
+       .params = approximate_params().specs()},
       [](const ParamView& p, const PluginContext&) {
-        const auto currents = p.choice_or("currents", kCurrents, "reflected");
-        const double fraction = p.number_or("window_fraction", 0.25, Limits::positive());
-        const auto normalisation = p.choice_or("normalisation", kNormalisations, "capped");
-        const auto far_field = p.choice_or("far_field", kFarFields, "chunked");
+        const ApproximateParams o = approximate_params().read(p);
         detail::ChunkingOptions chunking;
-        chunking.chunked = far_field == "chunked";
-        const int samples = static_cast<int>(p.integer_or("reflection_samples", 1, Limits::closed(1, 16)));
-        return std::make_unique<ApproximateSolver>(
-            currents == "reflected" ? ApproximateSolver::Currents::reflected
-                                    : ApproximateSolver::Currents::incident_and_reflected,
-            fraction,
-            normalisation == "capped"     ? ApproximateSolver::Normalisation::capped
-            : normalisation == "lossless" ? ApproximateSolver::Normalisation::lossless
-                                          : ApproximateSolver::Normalisation::eq9,
-            chunking, samples);
+        chunking.chunked = o.chunked;
+        return std::make_unique<ApproximateSolver>(o.currents, o.window_fraction, o.normalisation, chunking,
+                                                   o.reflection_samples);
       });
 }
 

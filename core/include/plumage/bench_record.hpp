@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <string>
 
-namespace plumage::cli {
+namespace plumage {
 
 // "Intel(R) Xeon(R) ... (2 cores), 23.4 GiB".
 std::string machine_description();
@@ -14,4 +14,4 @@ std::string today_iso();
 void record_benchmark(const std::filesystem::path& markdown, const std::string& id,
                       const std::string& body);
 
-}  // namespace plumage::cli
+}  // namespace plumage

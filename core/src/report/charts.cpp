@@ -1,4 +1,4 @@
-#include "chart.hpp"
+#include "plumage/charts.hpp"
 
 #include <spawn.h>
 #include <sys/wait.h>
@@ -14,7 +14,7 @@
 
 extern char** environ;
 
-namespace plumage::cli {
+namespace plumage {
 
 namespace fs = std::filesystem;
 
@@ -90,4 +90,4 @@ void draw_line_chart(const LineChart& chart, const fs::path& png) {
   fs::remove(csv, ec);
 }
 
-}  // namespace plumage::cli
+}  // namespace plumage

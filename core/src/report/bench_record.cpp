@@ -1,4 +1,4 @@
-#include "bench_record.hpp"
+#include "plumage/bench_record.hpp"
 
 #include <unistd.h>
 
@@ -9,7 +9,7 @@
 
 #include "plumage/atomic_file.hpp"
 
-namespace plumage::cli {
+namespace plumage {
 
 std::string machine_description() {
   std::ifstream cpuinfo("/proc/cpuinfo");
@@ -72,4 +72,4 @@ void record_benchmark(const std::filesystem::path& markdown, const std::string& 
   write_text_atomically(markdown, text);
 }
 
-}  // namespace plumage::cli
+}  // namespace plumage

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace plumage::cli {
+namespace plumage {
 
 struct LineChart {
   struct Point {
@@ -29,4 +29,4 @@ void draw_script_chart(const std::string& script, const std::vector<std::string>
                        const std::filesystem::path& png, const std::string& title,
                        const std::vector<std::string>& extra_args = {});
 
-}  // namespace plumage::cli
+}  // namespace plumage

@@ -1,0 +1,24 @@
+// Text of parameter defaults for the declarations of param_table.hpp.
+#include "plumage/param_table.hpp"
+
+#include <charconv>
+
+namespace plumage {
+
+std::string format_param_number(double value) {
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return ec == std::errc() ? std::string(buffer, end) : std::string("?");
+}
+
+std::string format_param_interval(std::pair<double, double> value) {
+  return "[" + format_param_number(value.first) + ", " + format_param_number(value.second) + "]";
+}
+
+std::string format_param_numbers(const std::vector<double>& values) {
+  std::string out = "[";
+  for (std::size_t k = 0; k < values.size(); ++k) out += (k ? ", " : "") + format_param_number(values[k]);
+  return out + "]";
+}
+
+}  // namespace plumage
