@@ -26,7 +26,7 @@ SceneConfig parse(const std::string& text) {
 
 const std::string kBase =
     "scene: tiny\n"
-    "render: {spp: 4, resolution: [32, 24], seed: 3, lod: mean}\n"
+    "render: {resolution: [32, 24]}\n"
     "camera: {position_mm: [0, -20, 30], look_at_mm: [0, 5, 0], fov_deg: 40}\n"
     "lights:\n"
     "  - {type: distant, toward_light: [0, 0, 1], irradiance: 2}\n"
@@ -36,7 +36,8 @@ const std::string kBase =
     "  ground: {type: diffuse, albedo: 0.3}\n"
     "objects:\n"
     "  - {type: feather, material: starling, detail: barb_level, shape: {length_mm: 10, vane_width_mm: 4}}\n"
-    "  - {type: plane, material: ground, size_mm: 50}\n";
+    "  - {type: plane, material: ground, size_mm: 50}\n"
+    "renderer: {type: pathtracer, spp: 4, seed: 3, lod: mean}\n";
 
 std::string with(const std::string& from, const std::string& to) {
   std::string t = kBase;
@@ -50,9 +51,9 @@ std::string with(const std::string& from, const std::string& to) {
 TEST_CASE("a small scene parses into settings, camera, lights, materials, objects", "[scene][config]") {
   const SceneConfig c = parse(kBase);
   CHECK(c.name == "tiny");
-  CHECK(c.settings.samples_per_pixel == 4);
-  CHECK(c.settings.seed == 3);
-  CHECK(c.settings.lod == LevelOfDetail::mean);
+  // The renderer's section is the renderer's (render_job.hpp reads it through its table).
+  CHECK(c.has_renderer_section);
+  CHECK(c.exposure == 1.0);
   REQUIRE(c.views.size() == 1);
   CHECK(c.views[0].camera.width == 32);
   CHECK(c.views[0].camera.height == 24);
@@ -88,10 +89,13 @@ TEST_CASE("scene errors name file:line:column, the field and the nearest name", 
   CHECK_THROWS_WITH(parse(with("type: distant", "type: distnat")), Catch::Contains("test.yaml:5:") && Catch::Contains("distant"));
   CHECK_THROWS_WITH(parse(with("material: ground", "material: gruond")),
                     Catch::Contains("test.yaml:12:") && Catch::Contains("did you mean 'ground'"));
-  CHECK_THROWS_WITH(parse(with("lod: mean", "lod: instances")), Catch::Contains("test.yaml:2:") && Catch::Contains("instance"));
   // Wrong vector size, out-of-range value, missing species file, feather material on a plane.
   CHECK_THROWS_WITH(parse(with("toward_light: [0, 0, 1]", "toward_light: [0, 1]")), Catch::Contains("expected 3 numbers"));
-  CHECK_THROWS_WITH(parse(with("spp: 4", "spp: 0")), Catch::Contains("render.spp"));
+  CHECK_THROWS_WITH(parse(with("resolution: [32, 24]", "resolution: [32, 24.5]")), Catch::Contains("render.resolution"));
+  // A renderer setting left in `render:` says where it belongs now.
+  CHECK_THROWS_WITH(parse(with("resolution: [32, 24]", "resolution: [32, 24], spp: 4")),
+                    Catch::Contains("test.yaml:2:") && Catch::Contains("render.spp") && Catch::Contains("renderer: {type: pathtracer, spp"));
+  CHECK_THROWS_WITH(parse(with("resolution: [32, 24]", "resolutoin: [32, 24]")), Catch::Contains("did you mean 'resolution'"));
   CHECK_THROWS_WITH(parse(with("starling.yaml", "starlin.yaml")), Catch::Contains("no such species config"));
   CHECK_THROWS_WITH(parse(with("material: ground", "material: starling")), Catch::Contains("plane takes a diffuse"));
   // A scene without light.
@@ -115,7 +119,7 @@ TEST_CASE("views override the camera key by key and replace the lights", "[scene
 }
 
 TEST_CASE("a geometry limit names the object", "[scene][config]") {
-  const SceneConfig c = parse(with("seed: 3, lod: mean}", "seed: 3, lod: mean, max_triangles: 100}"));
+  const SceneConfig c = parse(with("resolution: [32, 24]}", "resolution: [32, 24], max_triangles: 100}"));
   CHECK_THROWS_WITH(build_scene_meshes(c), Catch::Contains("object 'feather0'") && Catch::Contains("limit of 100 "));
 }
 

@@ -57,9 +57,10 @@ fs::path synthetic_material(const std::string& label = "synthetic/green", const 
 // A white-ish plane (albedo 0.5) seen from straight above, lit by a distant light along the normal.
 const std::string kPlane =
     "scene: plane\n"
-    "render: {spp: 16, resolution: [24, 16], seed: 5}\n"
+    "render: {resolution: [24, 16]}\n"
     "camera: {position_mm: [0, 0, 50], look_at_mm: [0, 0, 0], up: [0, 1, 0], fov_deg: 20}\n"
     "lights: [{type: distant, toward_light: [0, 0, 1], irradiance: 2}]\n"
+    "renderer: {type: pathtracer, spp: 16, seed: 5}\n"
     "materials: {paper: {type: diffuse, albedo: 0.5}}\n"
     "objects: [{type: plane, material: paper, size_mm: 200}]\n";
 
@@ -85,13 +86,23 @@ TEST_CASE("render: a diffuse plane has radiance albedo * irradiance / pi", "[cli
   for (double s : sum) CHECK(s / n == Approx(expected).epsilon(0.03));
   // No temporary files left.
   for (const auto& e : fs::directory_iterator(out)) CHECK(e.path().string().find("partial") == std::string::npos);
+  // The renderer's settings as it read them; the command-line ones go through its table.
+  CHECK(r.output.find("plane: 24 x 16, 16 spp, lod auto, seed 5") != std::string::npos);
+  const fs::path out2 = plumage::cli_test::fresh_scratch_path(kSuite, "plane-flags");
+  const Result r2 = run("render " + scene.string() + " --spp 4 --seed 7 --lod mean --width 12 --height 8 --out " + out2.string());
+  INFO(r2.output);
+  REQUIRE(r2.status == 0);
+  CHECK(r2.output.find("plane: 12 x 8, 4 spp, lod mean, seed 7") != std::string::npos);
+  CHECK(r2.output.find("(12 x 8, 4 spp, ") != std::string::npos);
+  CHECK(read_exr_rgb(out2 / "plane.exr").width() == 12);
 }
 
 TEST_CASE("render: a barb-level feather with a material file; the same image on 1 and 2 threads", "[cli][render]") {
   const fs::path plm = synthetic_material();
   const std::string text =
       "scene: feather\n"
-      "render: {spp: 2, resolution: [32, 32], seed: 9}\n"
+      "renderer: {spp: 2, seed: 9}\n"
+      "render: {resolution: [32, 32]}\n"
       "camera: {position_mm: [0, -5, 30], look_at_mm: [0, 4, 0], up: [0, 1, 0], fov_deg: 30}\n"
       "lights: [{type: distant, toward_light: [0, 0.3, 1], irradiance: 3}, {type: environment, radiance: 0.05}]\n"
       "materials: {green: {type: feather, file: " + plm.string() + "}}\n"
@@ -132,7 +143,8 @@ TEST_CASE("render: a material's warnings reach stderr and the EXR header", "[cli
   auto scene_with = [](const fs::path& plm, const std::string& name) {
     return write_scene(name + ".yaml",
                        "scene: " + name + "\n"
-                       "render: {spp: 1, resolution: [8, 8], seed: 3}\n"
+                       "renderer: {spp: 1, seed: 3}\n"
+                       "render: {resolution: [8, 8]}\n"
                        "camera: {position_mm: [0, -5, 30], look_at_mm: [0, 4, 0], up: [0, 1, 0], fov_deg: 30}\n"
                        "lights: [{type: distant, toward_light: [0, 0.3, 1], irradiance: 3}]\n"
                        "materials: {green: {type: feather, file: " + plm.string() + "}}\n"
@@ -167,10 +179,27 @@ TEST_CASE("render: bad input exits 2 with file:line:column and writes nothing", 
   CHECK(r.output.find("did you mean 'fov_deg'") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
   // Unknown renderer type: named with the nearest one.
-  const fs::path scene2 = write_scene("badrenderer.yaml", kPlane + "renderer: pathtracr\n");
+  std::string badrenderer = kPlane;
+  badrenderer.replace(badrenderer.find("renderer: {"), std::string::npos, "renderer: pathtracr\n");
+  badrenderer += "materials: {paper: {type: diffuse, albedo: 0.5}}\nobjects: [{type: plane, material: paper, size_mm: 200}]\n";
+  const fs::path scene2 = write_scene("badrenderer.yaml", badrenderer);
   r = run("render " + scene2.string() + " --out " + out.string());
   CHECK(r.status == 2);
-  CHECK(r.output.find("pathtracer") != std::string::npos);
+  CHECK(r.output.find("badrenderer.yaml:5:") != std::string::npos);
+  CHECK(r.output.find("did you mean 'pathtracer'") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));
+  // The renderer's settings are its own: a typo in its section, and a setting left in `render:`.
+  std::string badkey = kPlane;
+  badkey.replace(badkey.find("seed: 5"), 7, "sed: 5");
+  r = run("render " + write_scene("badkey.yaml", badkey).string() + " --out " + out.string());
+  CHECK(r.status == 2);
+  CHECK(r.output.find("badkey.yaml:5:") != std::string::npos);
+  CHECK(r.output.find("did you mean 'seed'") != std::string::npos);
+  std::string moved = kPlane;
+  moved.replace(moved.find("resolution: [24, 16]"), 20, "resolution: [24, 16], spp: 4");
+  r = run("render " + write_scene("moved.yaml", moved).string() + " --out " + out.string());
+  CHECK(r.status == 2);
+  CHECK(r.output.find("renderer: {type: pathtracer, spp") != std::string::npos);
   CHECK_FALSE(fs::exists(out));
   // A species material that is not cached, with characterisation switched off: the message
   // names the command that makes it (a clean clone has no .plm).

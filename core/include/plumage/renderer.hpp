@@ -1,12 +1,17 @@
 // Extension point: renderers of a Scene (issue 8). Implementation: "pathtracer"
 // (plugins/pathtracer: Embree 3, hero-wavelength spectral path tracing).
+//
+// A renderer owns its settings (samples, seeds, level of detail, wavelength range...): its
+// factory reads them from the scene's `renderer:` section through its own parameter table, so
+// the Scene carries only what every renderer sees (geometry, materials, lights, camera).
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <string_view>
-#include <vector>
 
+#include "plumage/exr.hpp"
 #include "plumage/image.hpp"
 #include "plumage/plugin.hpp"
 #include "plumage/scene.hpp"
@@ -24,9 +29,9 @@ struct RenderResult {
   // Linear sRGB radiance; a white Lambertian surface under a unit-irradiance D65 distant light
   // at normal incidence gives (1/π)·(1, 1, 1) up to the sRGB white point rounding.
   LinearImage rgb;
-  // settings.spectral_bins > 0: radiance per bin, [y][x][bin], equal bins over
-  // [lambda_min_nm, lambda_max_nm]; else empty.
-  std::vector<float> spectral;
+  // Radiance per equal wavelength bin, [y][x][bin], as the EXR writer takes it; bins == 0 when
+  // the renderer was not asked for spectral channels.
+  SpectralChannels spectral;
   RenderStats stats;
 };
 
@@ -37,9 +42,12 @@ class Renderer : public PluginObject {
   // (work done, total work, message); may be empty. Called from one thread at a time.
   using Progress = std::function<void(std::size_t done, std::size_t total, std::string_view what)>;
 
-  // Deterministic: the same scene, settings and seed give the same image for any thread count.
-  virtual RenderResult render(const Scene& scene, const RenderSettings& settings,
-                              Progress progress) const = 0;
+  // Deterministic: the same scene and settings (seed included) give the same image for any
+  // thread count.
+  virtual RenderResult render(const Scene& scene, Progress progress) const = 0;
+
+  // The settings a log line names, e.g. "16 spp, lod auto, seed 1"; may be empty.
+  virtual std::string describe() const { return {}; }
 };
 
 }  // namespace plumage

@@ -1,6 +1,7 @@
 // A renderable scene (issue 8): what `plumage render` hands to a Renderer plug-in after reading
 // configs/scenes/<scene>.yaml, building the procedural feathers and resolving every material.
-// Plain data: no plug-in types, no YAML; a Renderer never opens a file.
+// Plain data: no plug-in types, no YAML; a Renderer never opens a file. How to render it (samples,
+// seed, level of detail...) is the renderer's own business (renderer.hpp).
 //
 // Units: scene lengths in millimetres (a feather is tens of mm, a barbule tens of µm), angles in
 // radians, wavelengths in nm. Emission spectra have the shape of illuminant D65 (colour.hpp,
@@ -82,24 +83,6 @@ struct Camera {
   Vec3f position_mm, look_at_mm, up = {0.0f, 1.0f, 0.0f};
   double vertical_fov_rad = 0.5;
   int width = 512, height = 512;
-};
-
-enum class LevelOfDetail {
-  automatic,  // mean BRDF where a pixel footprint covers ≥ RenderSettings::lod_barbules barbules
-  mean,       // the mean BRDF everywhere
-  instance,   // BRDF instances everywhere
-};
-
-struct RenderSettings {
-  int samples_per_pixel = 16;
-  std::uint64_t seed = 1;  // every random draw derives from (seed, pixel, sample)
-  int max_depth = 8;       // path vertices after the camera
-  LevelOfDetail lod = LevelOfDetail::automatic;
-  double lod_barbules = 2.0;
-  double lambda_min_nm = 400.0, lambda_max_nm = 700.0;
-  int spectral_bins = 0;  // > 0: also accumulate this many equal spectral radiance channels
-  int tile_size = 16;
-  int threads = 0;  // 0: all hardware threads (oneTBB default)
 };
 
 struct Scene {

@@ -1,14 +1,15 @@
 // A scene file (configs/scenes/<scene>.yaml) read into plain data: camera(s), lights, materials,
-// objects (procedural feathers, barb-level assemblies, planes) and render settings. Every error
+// objects (procedural feathers, barb-level assemblies, planes) and the image's size. Every error
 // is a ConfigError naming file:line:column and the field; unknown keys are rejected with the
-// nearest valid name (params.hpp). Geometry is built separately (build_scene_meshes), feather
-// materials are resolved by the caller (`plumage render` looks up or characterises a .plm).
+// nearest valid name (params.hpp). Each section is read by one parameter table (param_table.hpp,
+// listed in docs/parameters.md under "scene"). Geometry is built separately
+// (build_scene_meshes), feather materials are resolved by the caller, and the renderer reads its
+// own section (render_job.hpp does all three for `plumage render`).
 //
 //   scene: starling                      # name of the outputs (default: the file's stem)
-//   renderer: pathtracer                 # or {type: pathtracer, ...}: kind "renderer" plug-in
-//   render: {spp: 16, resolution: [512, 512], seed: 1, lod: auto, lod_barbules: 2,
-//            spectral_bins: 0, max_depth: 8, lambda_nm: [400, 700], max_triangles: 4000000,
-//            exposure: 1}
+//   renderer: pathtracer                 # or {type: pathtracer, spp: 16, seed: 1, lod: auto, ...}:
+//                                        # a kind "renderer" plug-in and its own settings
+//   render: {resolution: [512, 512], max_triangles: 4000000, exposure: 1}
 //   camera: {position_mm: [x, y, z], look_at_mm: [x, y, z], up: [0, 0, 1], fov_deg: 30}
 //   lights:
 //     - {type: distant, toward_light: [x, y, z], irradiance: 1}
@@ -82,14 +83,12 @@ struct SceneConfig {
   std::filesystem::path file;
   std::string name;
   std::string content_hash;
-  ParamView root;  // kept for the renderer section (created later through the registry)
+  ParamView root;  // kept for the `renderer:` section, which the renderer reads (render_job.hpp)
   bool has_renderer_section = false;
-  std::string renderer_type = "pathtracer";
   std::vector<SceneMaterial> materials;  // feather entries have feather == nullptr until resolved
   std::vector<std::optional<FeatherMaterialRequest>> feather_requests;  // per material
   std::vector<SceneObjectSpec> objects;
   std::vector<SceneView> views;  // ≥ 1: the top-level camera and lights when no `views:`
-  RenderSettings settings;
   std::size_t max_triangles = 4'000'000;
   double exposure = 1.0;  // render.exposure: scale of the PNG preview only (the EXR is radiance)
 };
@@ -108,7 +107,8 @@ std::vector<SceneMesh> build_scene_meshes(const SceneConfig& config, SceneGeomet
 // The renderable scene of one view (materials must be resolved by then).
 Scene make_scene(const SceneConfig& config, const SceneView& view, std::vector<SceneMesh> meshes);
 
-// The view named `name`; an unknown name is a ConfigError-style message listing the views.
+// The view named `name`; an unknown name is a ConfigError (field "views") naming the nearest
+// view and listing them all.
 const SceneView& find_view(const SceneConfig& config, const std::string& name);
 
 }  // namespace plumage

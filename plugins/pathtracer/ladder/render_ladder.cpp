@@ -1,14 +1,15 @@
 // Accuracy ladder "pathtracer" (issue 9): the renderer at growing samples per pixel against a
 // converged render of the same scene (many more samples, an independent seed, so that its
 // residual noise is uncorrelated with the rungs'): relative RMS of the linear sRGB image. The
-// scene is the tests' noisy feather scene (render_fixtures.hpp: a synthetic feather patch over a
-// diffuse floor, area + point light + environment), so every estimator contributes.
+// scene is the reference library's noisy feather scene (reference/reference_scene.hpp, shared
+// with the tests: a synthetic feather patch over a diffuse floor, area + point light +
+// environment), so every estimator contributes.
 #include <cmath>
 #include <cstdio>
 
 #include "pathtracer.hpp"
 #include "plumage/accuracy_ladder.hpp"
-#include "render_fixtures.hpp"
+#include "reference_scene.hpp"
 
 namespace plumage::pathtracer {
 
@@ -31,13 +32,12 @@ std::vector<LadderPoint> run_render_ladder(const AccuracyLadder::Options& option
   const int size = options.quick ? 32 : 64;
   const int reference_spp = options.quick ? 4096 : 16384;
   const std::vector<int> ladder = options.quick ? std::vector<int>{1, 4, 16, 64, 256} : std::vector<int>{1, 4, 16, 64, 256, 1024};
-  const Scene scene = plumage::testing::noisy_feather_scene(size);
-  const PathTracer tracer;
-  RenderSettings settings;
+  const Scene scene = reference::noisy_feather_scene(size);
+  Settings settings;
   settings.samples_per_pixel = reference_spp;
   settings.seed = 0x5eed0001;
   if (options.progress) options.progress("reference: " + std::to_string(reference_spp) + " spp");
-  const LinearImage reference = tracer.render(scene, settings, {}).rgb;
+  const LinearImage converged = PathTracer(settings).render(scene, {}).rgb;
   char case_name[96];
   std::snprintf(case_name, sizeof case_name, "feather patch over a floor, %dx%d px", size, size);
   std::vector<LadderPoint> points;
@@ -45,7 +45,8 @@ std::vector<LadderPoint> run_render_ladder(const AccuracyLadder::Options& option
     settings.samples_per_pixel = spp;
     settings.seed = 0x5eed1000u + static_cast<unsigned>(spp);
     LinearImage image;
-    const RungCost cost = measure_rung([&] { image = tracer.render(scene, settings, {}).rgb; });
+    const PathTracer tracer(settings);
+    const RungCost cost = measure_rung([&] { image = tracer.render(scene, {}).rgb; });
     LadderPoint pt;
     pt.backend = "pathtracer";
     pt.case_name = case_name;
@@ -53,7 +54,7 @@ std::vector<LadderPoint> run_render_ladder(const AccuracyLadder::Options& option
     pt.fidelity = spp;
     pt.reference = "converged render (" + std::to_string(reference_spp) + " spp, independent seed)";
     pt.metric = "relative RMS of the linear sRGB image";
-    pt.error = relative_rms(image, reference);
+    pt.error = relative_rms(image, converged);
     pt.wall_s = cost.wall_s;
     pt.cpu_s = cost.cpu_s;
     if (options.progress) {

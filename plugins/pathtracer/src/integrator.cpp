@@ -63,7 +63,7 @@ struct Integrator::Vertex {
   double ior = 1.5;
 };
 
-Integrator::Integrator(const Scene& scene, const RenderSettings& settings, const EmbreeScene& embree,
+Integrator::Integrator(const Scene& scene, const Settings& settings, const EmbreeScene& embree,
                        const SpectralTables& tables)
     : scene_(scene), settings_(settings), embree_(embree), tables_(tables) {
   // Float rays: a scene of extent X mm has float spacing ≈ 6e-8·X; 2e-6·X (≈ 30 ulps) keeps

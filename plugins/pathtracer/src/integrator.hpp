@@ -19,6 +19,7 @@
 #include "incident_cache.hpp"
 #include "plumage/random.hpp"
 #include "plumage/scene.hpp"
+#include "settings.hpp"
 #include "spectral_tables.hpp"
 
 namespace plumage::pathtracer {
@@ -45,7 +46,7 @@ class PathSampler {
 
 class Integrator {
  public:
-  Integrator(const Scene& scene, const RenderSettings& settings, const EmbreeScene& embree,
+  Integrator(const Scene& scene, const Settings& settings, const EmbreeScene& embree,
              const SpectralTables& tables);
 
   // Radiance arriving along −dir at the camera from the ray (origin, dir), at `lambda` (λ_0 the
@@ -63,7 +64,7 @@ class Integrator {
   V3 offset_origin(V3 p, V3 ng, V3 toward) const;
 
   const Scene& scene_;
-  const RenderSettings& settings_;
+  const Settings& settings_;
   const EmbreeScene& embree_;
   const SpectralTables& tables_;
   double eps_ = 1e-5;  // ray-origin offset, mm

@@ -19,7 +19,7 @@
 
 namespace plumage::pathtracer {
 
-void validate_scene(const Scene& scene, const RenderSettings& s) {
+void validate_scene(const Scene& scene, const Settings& s) {
   auto fail = [&](const std::string& what) { throw Error("pathtracer: scene '" + scene.name + "': " + what); };
   if (scene.camera.width <= 0 || scene.camera.height <= 0) fail("camera width/height must be positive");
   if (!(scene.camera.vertical_fov_rad > 0.0 && scene.camera.vertical_fov_rad < kPi)) fail("camera vertical_fov_rad must be in (0, pi)");
@@ -52,7 +52,8 @@ void validate_scene(const Scene& scene, const RenderSettings& s) {
   }
 }
 
-RenderResult PathTracer::render(const Scene& scene, const RenderSettings& settings, Progress progress) const {
+RenderResult PathTracer::render(const Scene& scene, Progress progress) const {
+  const Settings& settings = settings_;
   const auto t0 = std::chrono::steady_clock::now();
   validate_scene(scene, settings);
   const SpectralTables tables(settings.lambda_min_nm, settings.lambda_max_nm);
@@ -68,7 +69,12 @@ RenderResult PathTracer::render(const Scene& scene, const RenderSettings& settin
 
   RenderResult result;
   result.rgb = LinearImage(W, H);
-  if (bins > 0) result.spectral.assign(static_cast<std::size_t>(W) * H * bins, 0.0f);
+  if (bins > 0) {
+    result.spectral.bins = bins;
+    result.spectral.lambda_min_nm = settings.lambda_min_nm;
+    result.spectral.lambda_max_nm = settings.lambda_max_nm;
+    result.spectral.values.assign(static_cast<std::size_t>(W) * H * bins, 0.0f);
+  }
   std::atomic<std::uint64_t> rays{0}, feather_points{0}, feather_mean{0};
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
@@ -102,7 +108,7 @@ RenderResult PathTracer::render(const Scene& scene, const RenderSettings& settin
         const Rgb rgb = xyz_to_linear_srgb({sum.x * inv, sum.y * inv, sum.z * inv});
         result.rgb.at(x, y) = {static_cast<float>(rgb.r), static_cast<float>(rgb.g), static_cast<float>(rgb.b)};
         for (int b = 0; b < bins; ++b) {
-          result.spectral[pixel * bins + b] = static_cast<float>(spectral_acc[static_cast<std::size_t>(b)] * inv);
+          result.spectral.values[pixel * bins + b] = static_cast<float>(spectral_acc[static_cast<std::size_t>(b)] * inv);
         }
       }
     }

@@ -1,7 +1,7 @@
 // Scenes and materials of the path tracer tests, built in memory (a clean clone has no
-// characterised .plm files): flat quads, an icosphere, a synthetic FeatherMaterial
-// (tests/support/bsdf_fixtures.hpp) over 400–700 nm, and colour helpers independent of the
-// renderer (trapezoid rule on the CIE tables).
+// characterised .plm files): the ladder's reference scene and its pieces (square, diffuse,
+// synthetic feather, far camera, noisy feather scene: plugins/pathtracer/reference), plus an
+// icosphere and colour helpers independent of the renderer (trapezoid rule on the CIE tables).
 #pragma once
 
 #include <cmath>
@@ -14,26 +14,17 @@
 #include "plumage/feather_bsdf.hpp"
 #include "plumage/fitter.hpp"
 #include "plumage/scene.hpp"
+#include "reference_scene.hpp"
 
 namespace plumage::testing {
 
-inline Vec3f v3f(double x, double y, double z) {
-  return {static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)};
-}
-
-// Square of side `size` mm in the plane z = 0, centred at the origin, normal +z; frame t = +y.
-inline SceneMesh square(double size, std::uint32_t material, int barbules = 0) {
-  SceneMesh m;
-  m.name = "square";
-  const double h = 0.5 * size;
-  m.positions = {v3f(-h, -h, 0), v3f(h, -h, 0), v3f(h, h, 0), v3f(-h, h, 0)};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  m.frame_axis = {v3f(0, 1, 0), v3f(0, 1, 0)};
-  m.frame_normal = {v3f(0, 0, 1), v3f(0, 0, 1)};
-  m.material = material;
-  if (barbules > 0) m.barbule_spacing_mm = size / barbules;
-  return m;
-}
+using pathtracer::reference::diffuse;
+using pathtracer::reference::far_camera;
+using pathtracer::reference::feather;
+using pathtracer::reference::noisy_feather_scene;
+using pathtracer::reference::square;
+using pathtracer::reference::synthetic_feather;
+using pathtracer::reference::v3f;
 
 // Icosphere of radius r (subdivided `levels` times, vertices on the sphere): a convex closed mesh,
 // outward winding.
@@ -84,53 +75,6 @@ inline SceneMesh icosphere(double r, int levels, std::uint32_t material) {
   return m;
 }
 
-inline SceneMaterial diffuse(double albedo) {
-  SceneMaterial m;
-  m.name = "white";
-  m.kind = SceneMaterial::Kind::diffuse;
-  m.albedo.value = {albedo};
-  return m;
-}
-
-// A coloured synthetic feather: 50 bins of 6 nm from 400 nm, reflected albedo E peaking at
-// 544 nm, roughness 0.15–0.3, the lobe's effective azimuth offset by up to 6° (a non-trivial
-// φ_eff), instance noise from an AR(1) pool. A_r = E at the nodes (hemisphere integral of the
-// fitter, as bsdf_fixtures builds it).
-inline std::shared_ptr<const FeatherBsdf> synthetic_feather(double peak_albedo = 0.8, int grid = 10) {
-  MaterialRecipe r;
-  r.bins = 50;
-  r.grid = grid;
-  r.m_eff = [](int w, double ct, double) { return 0.15 + 0.15 * (1.0 - ct) + 0.001 * w; };
-  r.phi_offset = [](int, double ct, double) { return deg_to_rad(6.0) * (1.0 - ct); };
-  r.albedo = [peak_albedo](int w, double, double) {
-    const double z = (w - 24.0) / 8.0;
-    return 0.1 + (peak_albedo - 0.1) * std::exp(-z * z);
-  };
-  auto material = std::make_shared<FeatherMaterial>(
-      make_material(r, [](const Lobe& l, double t) { return hemisphere_lobe_integral(l, t); }));
-  material->noise = ar1_pool(64, 64, 0.8, 0xfea7);
-  return std::make_shared<FeatherBsdf>(material);
-}
-
-inline SceneMaterial feather(std::shared_ptr<const FeatherBsdf> bsdf) {
-  SceneMaterial m;
-  m.name = "feather";
-  m.kind = SceneMaterial::Kind::feather;
-  m.feather = std::move(bsdf);
-  return m;
-}
-
-// Far pinhole camera looking at the origin from direction `toward_camera` (unit), narrow field.
-inline Camera far_camera(Direction toward_camera, double distance_mm, double fov_rad, int size) {
-  Camera c;
-  c.position_mm = v3f(distance_mm * toward_camera.x, distance_mm * toward_camera.y, distance_mm * toward_camera.z);
-  c.look_at_mm = v3f(0, 0, 0);
-  c.up = std::abs(toward_camera.y) < 0.9 ? v3f(0, 1, 0) : v3f(1, 0, 0);
-  c.vertical_fov_rad = fov_rad;
-  c.width = c.height = size;
-  return c;
-}
-
 // Linear sRGB of a radiance spectrum L(λ) (in D65 table units) over [lmin, lmax], by the
 // trapezoid rule on a 0.1 nm grid with the CIE tables interpolated linearly, normalised per XYZ
 // channel so that D65 × 1 gives the white point (the renderer's stated convention, written
@@ -163,25 +107,6 @@ inline double d65_at(double l) {
   while (i + 2 < t.lambda_nm.size() && t.lambda_nm[i + 1] <= l) ++i;
   const double a = (l - t.lambda_nm[i]) / (t.lambda_nm[i + 1] - t.lambda_nm[i]);
   return t.d65[i] + a * (t.d65[i + 1] - t.d65[i]);
-}
-
-// Feather patch over a diffuse floor, an area light, a point light and an environment: every
-// estimator (NEE + MIS, BSDF sampling, spectral MIS, roulette) contributes noise.
-inline Scene noisy_feather_scene(int size) {
-  Scene s;
-  s.name = "noisy";
-  s.materials = {diffuse(0.6), feather(synthetic_feather(0.8, 6))};
-  SceneMesh floor = square(60.0, 0);
-  for (auto& p : floor.positions) p.z = -1.0f;
-  s.meshes.push_back(floor);
-  s.meshes.push_back(square(12.0, 1, 200));
-  s.area_lights.push_back({v3f(-10, -10, 25), v3f(20, 0, 0), v3f(0, 20, 0), 0.4, false});
-  // Facing down: the emitting side is edge_u × edge_v = +z… flip it to face the scene.
-  std::swap(s.area_lights[0].edge_u_mm, s.area_lights[0].edge_v_mm);
-  s.point_lights.push_back({v3f(8, 4, 10), 40.0});
-  s.environment.radiance = 0.1;
-  s.camera = far_camera({0.2, -0.4, 0.89}, 40.0, 0.9, size);
-  return s;
 }
 
 }  // namespace plumage::testing

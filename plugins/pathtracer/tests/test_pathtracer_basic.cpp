@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "pathtracer.hpp"
+#include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
 #include "plumage/exr.hpp"
 #include "plumage/renderer.hpp"
@@ -44,12 +45,12 @@ Scene mixed_scene() {
 }  // namespace
 
 TEST_CASE("pathtracer: the plug-in renders a scene with every material and light kind", "[pathtracer]") {
-  auto renderer = registry().create_named<Renderer>("pathtracer", ParamView{}, registry().context());
-  RenderSettings settings;
-  settings.samples_per_pixel = 4;
-  settings.spectral_bins = 5;
+  // The settings come from the plug-in's own table (a scene's `renderer:` section).
+  const ConfigDocument section = ConfigDocument::parse("{type: pathtracer, spp: 4, spectral_bins: 5}", "scene");
+  auto renderer = registry().create<Renderer>(section.root(), "type", registry().context());
+  CHECK(renderer->describe() == "4 spp, lod auto, seed 1");
   std::size_t calls = 0, last = 0;
-  const RenderResult r = renderer->render(mixed_scene(), settings, [&](std::size_t done, std::size_t total, std::string_view) {
+  const RenderResult r = renderer->render(mixed_scene(), [&](std::size_t done, std::size_t total, std::string_view) {
     ++calls;
     CHECK(done > last);
     CHECK(done <= total);
@@ -66,14 +67,17 @@ TEST_CASE("pathtracer: the plug-in renders a scene with every material and light
   }
   CHECK(finite);
   CHECK(sum > 0.0);
-  CHECK(r.spectral.size() == 32u * 32u * 5u);
+  CHECK(r.spectral.values.size() == 32u * 32u * 5u);
+  CHECK(r.spectral.bins == 5);
+  CHECK(r.spectral.lambda_min_nm == 400.0);
+  CHECK(r.spectral.lambda_max_nm == 700.0);
   CHECK(r.stats.camera_paths == 32u * 32u * 4u);
   CHECK(r.stats.rays >= r.stats.camera_paths);
   CHECK(r.stats.mean_lod_fraction >= 0.0);
   CHECK(r.stats.mean_lod_fraction <= 1.0);
 
   const auto path = std::filesystem::temp_directory_path() / "plumage-test-pathtracer" / "mixed.exr";
-  SpectralChannels spectral{settings.spectral_bins, settings.lambda_min_nm, settings.lambda_max_nm, r.spectral};
+  const SpectralChannels& spectral = r.spectral;
   write_exr(r.rgb, path, &spectral);
   const LinearImage back = read_exr_rgb(path);
   REQUIRE(back.width() == 32);
@@ -90,12 +94,12 @@ TEST_CASE("pathtracer: the plug-in renders a scene with every material and light
 TEST_CASE("pathtracer: inconsistent scenes are refused with the mesh named", "[pathtracer]") {
   Scene s = mixed_scene();
   s.meshes[1].frame_axis.pop_back();
-  RenderSettings settings;
-  CHECK_THROWS_WITH(pathtracer::PathTracer().render(s, settings, {}),
+  pathtracer::Settings settings;
+  CHECK_THROWS_WITH(pathtracer::PathTracer(settings).render(s, {}),
                     Catch::Contains("mesh 'square'") && Catch::Contains("frame_axis"));
   s = mixed_scene();
   s.meshes[0].material = 7;
-  CHECK_THROWS_WITH(pathtracer::PathTracer().render(s, settings, {}), Catch::Contains("material index 7"));
+  CHECK_THROWS_WITH(pathtracer::PathTracer(settings).render(s, {}), Catch::Contains("material index 7"));
 }
 
 TEST_CASE("exr: empty images and wrong spectral sizes are refused, naming the path", "[pathtracer]") {

@@ -27,11 +27,10 @@ double rms(const LinearImage& a, const LinearImage& ref) {
 
 TEST_CASE("pathtracer convergence: RMS error against a 1024-spp reference falls as spp^-1/2", "[pathtracer]") {
   const Scene scene = noisy_feather_scene(10);
-  const pathtracer::PathTracer tracer;
-  RenderSettings settings;
+  pathtracer::Settings settings;
   settings.samples_per_pixel = 1024;
   settings.seed = 1000;  // the reference's samples are independent of the levels'
-  const LinearImage ref = tracer.render(scene, settings, {}).rgb;
+  const LinearImage ref = pathtracer::PathTracer(settings).render(scene, {}).rgb;
   const int levels[3] = {4, 16, 64};
   double e[3];
   for (int i = 0; i < 3; ++i) {
@@ -41,7 +40,7 @@ TEST_CASE("pathtracer convergence: RMS error against a 1024-spp reference falls 
     for (int rep = 0; rep < 4; ++rep) {
       settings.samples_per_pixel = levels[i];
       settings.seed = 10 * (i + 1) + rep;
-      const double r = rms(tracer.render(scene, settings, {}).rgb, ref);
+      const double r = rms(pathtracer::PathTracer(settings).render(scene, {}).rgb, ref);
       s2 += r * r;
     }
     e[i] = std::sqrt(s2 / 4);
@@ -63,20 +62,20 @@ TEST_CASE("pathtracer convergence: RMS error against a 1024-spp reference falls 
 
 TEST_CASE("pathtracer determinism: the same seed gives bit-identical images on 1 and 2 threads", "[pathtracer]") {
   const Scene scene = noisy_feather_scene(40);
-  RenderSettings settings;
+  pathtracer::Settings settings;
   settings.samples_per_pixel = 4;
   settings.tile_size = 8;
   settings.spectral_bins = 6;
   settings.threads = 1;
-  const RenderResult one = pathtracer::PathTracer().render(scene, settings, {});
+  const RenderResult one = pathtracer::PathTracer(settings).render(scene, {});
   settings.threads = 2;
-  const RenderResult two = pathtracer::PathTracer().render(scene, settings, {});
+  const RenderResult two = pathtracer::PathTracer(settings).render(scene, {});
   REQUIRE(one.rgb.pixels().size() == two.rgb.pixels().size());
   CHECK(std::memcmp(one.rgb.pixels().data(), two.rgb.pixels().data(), one.rgb.pixels().size_bytes()) == 0);
   CHECK(one.spectral == two.spectral);
   CHECK(one.stats.rays == two.stats.rays);
   settings.seed = 2;
-  const RenderResult other = pathtracer::PathTracer().render(scene, settings, {});
+  const RenderResult other = pathtracer::PathTracer(settings).render(scene, {});
   CHECK(std::memcmp(one.rgb.pixels().data(), other.rgb.pixels().data(), one.rgb.pixels().size_bytes()) != 0);
 }
 
@@ -87,16 +86,16 @@ TEST_CASE("pathtracer level of detail: mean BRDF where the footprint covers the 
   s.meshes.push_back(square(10.0, 0));
   s.distant_lights.push_back({v3f(0, 0, 1), 1.0});
   s.camera = far_camera({0.0, 0.0, 1.0}, 100.0, 0.05, 16);  // pixel footprint ≈ 100·0.05/16 = 0.31 mm
-  RenderSettings settings;
+  pathtracer::Settings settings;
   settings.samples_per_pixel = 2;
   settings.max_depth = 1;
   s.meshes[0].barbule_spacing_mm = 0.01;  // 31 barbules per pixel: mean
-  CHECK(pathtracer::PathTracer().render(s, settings, {}).stats.mean_lod_fraction == 1.0);
+  CHECK(pathtracer::PathTracer(settings).render(s, {}).stats.mean_lod_fraction == 1.0);
   s.meshes[0].barbule_spacing_mm = 1.0;  // a third of a barbule per pixel: instances
-  CHECK(pathtracer::PathTracer().render(s, settings, {}).stats.mean_lod_fraction == 0.0);
-  settings.lod = LevelOfDetail::mean;
-  CHECK(pathtracer::PathTracer().render(s, settings, {}).stats.mean_lod_fraction == 1.0);
-  settings.lod = LevelOfDetail::instance;
+  CHECK(pathtracer::PathTracer(settings).render(s, {}).stats.mean_lod_fraction == 0.0);
+  settings.lod = pathtracer::LevelOfDetail::mean;
+  CHECK(pathtracer::PathTracer(settings).render(s, {}).stats.mean_lod_fraction == 1.0);
+  settings.lod = pathtracer::LevelOfDetail::instance;
   s.meshes[0].barbule_spacing_mm = 0.01;
-  CHECK(pathtracer::PathTracer().render(s, settings, {}).stats.mean_lod_fraction == 0.0);
+  CHECK(pathtracer::PathTracer(settings).render(s, {}).stats.mean_lod_fraction == 0.0);
 }

@@ -53,11 +53,11 @@ Measured render_patch(std::shared_ptr<const FeatherBsdf> bsdf, Direction light, 
   // 1 m away, 1.5 mrad field: the patch (≥ 10 mm·cos θ ≥ 3 mm wide) fills the image; view
   // directions vary by ≤ 0.75 mrad.
   s.camera = far_camera(view, 1000.0, 0.0015, 16);
-  RenderSettings settings;
+  pathtracer::Settings settings;
   settings.samples_per_pixel = spp;
   settings.seed = seed;
-  settings.lod = LevelOfDetail::mean;
-  return centre_mean(pathtracer::PathTracer().render(s, settings, {}).rgb);
+  settings.lod = pathtracer::LevelOfDetail::mean;
+  return centre_mean(pathtracer::PathTracer(settings).render(s, {}).rgb);
 }
 
 // The direct value: f(λ, ω_i = light, ω_o = view)·cos θ_i·E·D65(λ) → linear sRGB (fixture).

@@ -72,10 +72,10 @@ double sample_range(int c, double w) {
 }  // namespace
 
 TEST_CASE("pathtracer furnace: a white Lambertian sphere in a constant environment vanishes", "[pathtracer]") {
-  RenderSettings settings;
+  pathtracer::Settings settings;
   settings.samples_per_pixel = kSpp;
   settings.max_depth = 8;
-  const RenderResult r = pathtracer::PathTracer().render(furnace(diffuse(1.0)), settings, {});
+  const RenderResult r = pathtracer::PathTracer(settings).render(furnace(diffuse(1.0)), {});
   const Rgb white = xyz_to_linear_srgb(d65_white_point());
   const double n = static_cast<double>(kSize) * kSize * kSpp;
   for (int c = 0; c < 3; ++c) {
@@ -133,11 +133,11 @@ std::pair<double, double> sphere_luminance(const RenderResult& r) {
 }  // namespace
 
 TEST_CASE("pathtracer furnace: a feather-BSDF sphere is no brighter than the environment", "[pathtracer]") {
-  RenderSettings settings;
+  pathtracer::Settings settings;
   settings.samples_per_pixel = kSpp;
   settings.max_depth = 8;
-  settings.lod = LevelOfDetail::mean;
-  const RenderResult r = pathtracer::PathTracer().render(furnace(feather(synthetic_feather(1.0, 8))), settings, {});
+  settings.lod = pathtracer::LevelOfDetail::mean;
+  const RenderResult r = pathtracer::PathTracer(settings).render(furnace(feather(synthetic_feather(1.0, 8))), {});
   // Luminance (Y) of the sphere pixels against the environment's (Y = R).
   const auto [mean, se] = sphere_luminance(r);
   std::printf("furnace feather: sphere luminance %.5f ± %.5f, environment %.5f\n", mean, se, kEnv);
@@ -154,10 +154,10 @@ TEST_CASE("pathtracer furnace: a smooth dielectric sphere (ior 1.5) vanishes too
   glass.name = "glass";
   glass.kind = SceneMaterial::Kind::dielectric;
   glass.ior = 1.5;
-  RenderSettings settings;
+  pathtracer::Settings settings;
   settings.samples_per_pixel = 32;
   settings.max_depth = 32;
-  const RenderResult r = pathtracer::PathTracer().render(furnace(glass), settings, {});
+  const RenderResult r = pathtracer::PathTracer(settings).render(furnace(glass), {});
   const auto [mean, se] = sphere_luminance(r);
   std::printf("furnace dielectric: sphere luminance %.5f ± %.5f, environment %.5f\n", mean, se, kEnv);
   CHECK(std::abs(mean - kEnv) <= 4.0 * se + 0.005 * kEnv);

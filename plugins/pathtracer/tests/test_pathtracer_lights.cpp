@@ -25,10 +25,10 @@ double corner_form_factor(double a, double b, double h) {
 }
 
 double centre_luminance(const Scene& s, int spp) {
-  RenderSettings settings;
+  pathtracer::Settings settings;
   settings.samples_per_pixel = spp;
   settings.max_depth = 1;  // direct light only: the closed forms have no interreflection
-  const RenderResult r = pathtracer::PathTracer().render(s, settings, {});
+  const RenderResult r = pathtracer::PathTracer(settings).render(s, {});
   double sum = 0;
   int n = 0;
   for (int y = 4; y < 12; ++y)

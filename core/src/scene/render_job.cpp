@@ -1,0 +1,143 @@
+// The render pipeline (render_job.hpp): scene → renderer from its own section → meshes →
+// materials → one Scene per view → EXR + PNG.
+#include "plumage/render_job.hpp"
+
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <ctime>
+#include <optional>
+
+#include "plumage/config_document.hpp"
+#include "plumage/error.hpp"
+
+namespace plumage {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string yaml_quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+// The scene's `renderer:` (a type name, a map with its settings, or absent: pathtracer) with the
+// job's settings written into it, created through the registry: the renderer's table reads the
+// file's keys and the overrides alike, and refuses keys it does not declare.
+std::unique_ptr<Renderer> create_renderer(const SceneConfig& c,
+                                          const std::vector<std::pair<std::string, std::string>>& settings,
+                                          const PluginRegistry& registry) {
+  std::vector<ConfigDocument::Override> overrides;
+  const bool is_map = c.has_renderer_section && c.root.node("renderer").is_map();
+  const bool named = c.has_renderer_section && !is_map;
+  if (!is_map) {
+    const std::string type = named ? c.root.text("renderer") : std::string("pathtracer");
+    overrides.push_back({"renderer", "{type: " + yaml_quoted(type) + "}", true});
+  } else if (!c.root.child("renderer").has("type")) {
+    overrides.push_back({"renderer.type", "pathtracer", true});
+  }
+  for (const auto& [key, value] : settings) overrides.push_back({"renderer." + key, value, true});
+  const ConfigDocument derived = ConfigDocument::derive(c.root, overrides, c.file.parent_path(), c.file.string());
+  try {
+    return registry.create<Renderer>(derived.root().child("renderer"), "type", registry.context(c.file.parent_path()));
+  } catch (const ConfigError& e) {
+    // `renderer: <name>` with an unknown name: point at the scene's line, not the derived map.
+    if (named && e.field() == "renderer.type") c.root.fail("renderer", e.message());
+    throw;
+  }
+}
+
+// At most `max_threads` oneTBB threads while it lives (0: no cap).
+class ThreadCap {
+ public:
+  explicit ThreadCap(std::size_t max_threads) {
+    if (max_threads > 0) cap_.emplace(tbb::global_control::max_allowed_parallelism, max_threads);
+  }
+
+ private:
+  std::optional<tbb::global_control> cap_;
+};
+
+}  // namespace
+
+struct RenderJob::State {
+  RenderJobOptions options;
+  SceneConfig config;
+  std::unique_ptr<Renderer> renderer;
+  std::vector<const SceneView*> views;
+  std::vector<SceneMesh> meshes;
+  SceneGeometryStats stats;
+  double geometry_s = 0.0;
+  bool built = false, meshes_moved = false;
+};
+
+RenderJob::RenderJob(const fs::path& scene_file, RenderJobOptions options, const PluginRegistry& registry)
+    : state_(std::make_unique<State>()) {
+  State& s = *state_;
+  s.options = std::move(options);
+  s.config = load_scene_config(scene_file);
+  if (s.options.width > 0 && s.options.height > 0) {
+    for (SceneView& v : s.config.views) v.camera.width = s.options.width, v.camera.height = s.options.height;
+  }
+  if (!s.options.view.empty()) {
+    s.views.push_back(&find_view(s.config, s.options.view));
+  } else {
+    for (const SceneView& v : s.config.views) s.views.push_back(&v);
+  }
+  s.renderer = create_renderer(s.config, s.options.renderer_settings, registry);
+}
+
+RenderJob::~RenderJob() = default;
+RenderJob::RenderJob(RenderJob&&) noexcept = default;
+RenderJob& RenderJob::operator=(RenderJob&&) noexcept = default;
+
+const SceneConfig& RenderJob::config() const { return state_->config; }
+const std::vector<const SceneView*>& RenderJob::views() const { return state_->views; }
+const Renderer& RenderJob::renderer() const { return *state_->renderer; }
+double RenderJob::geometry_seconds() const { return state_->geometry_s; }
+
+const SceneGeometryStats& RenderJob::build_geometry() {
+  State& s = *state_;
+  if (!s.built) {
+    const ThreadCap cap(s.options.max_threads);
+    const auto t0 = std::chrono::steady_clock::now();
+    s.meshes = build_scene_meshes(s.config, &s.stats);
+    s.geometry_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    s.built = true;
+  }
+  return s.stats;
+}
+
+void RenderJob::resolve_materials(const FeatherResolver& resolve) {
+  State& s = *state_;
+  const ThreadCap cap(s.options.max_threads);
+  for (std::size_t k = 0; k < s.config.materials.size(); ++k) {
+    if (s.config.feather_requests[k]) s.config.materials[k].feather = resolve(*s.config.feather_requests[k]);
+  }
+}
+
+RenderedView RenderJob::render_view(std::size_t k, const fs::path& out_dir, const Renderer::Progress& progress) {
+  State& s = *state_;
+  if (!s.built) throw Error("render job: build_geometry() must run before render_view()");
+  if (s.meshes_moved) throw Error("render job: the scene's only view was rendered already");
+  const bool last_use = s.views.size() == 1;
+  Scene scene = make_scene(s.config, *s.views.at(k), last_use ? std::move(s.meshes) : s.meshes);
+  s.meshes_moved = last_use;
+  const ThreadCap cap(s.options.max_threads);
+  const std::clock_t cpu0 = std::clock();
+  const RenderResult result = s.renderer->render(scene, progress);
+  RenderedView out;
+  out.cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
+  out.name = scene.name;
+  out.exr = out_dir / (scene.name + ".exr");
+  out.png = out_dir / (scene.name + ".png");
+  out.width = scene.camera.width, out.height = scene.camera.height;
+  out.stats = result.stats;
+  fs::create_directories(out_dir);
+  write_render_images(result, s.config.exposure, out.exr, out.png);
+  return out;
+}
+
+}  // namespace plumage
