@@ -4,7 +4,7 @@
 #include "commands.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
-#include "plumage/scene_config.hpp"
+#include "plumage/render_job.hpp"
 #include "plumage/species_config.hpp"
 
 namespace plumage::cli {
@@ -36,7 +36,9 @@ void check_file(AppContext& context, const std::string& file) {
     return;
   }
   if (root.has("scene") || root.has("objects")) {
-    const SceneConfig scene = load_scene_config(file);
+    // Created as `plumage render` creates it, so the renderer's own table checks its section.
+    const RenderJob job(file, {}, context.registry());
+    const SceneConfig& scene = job.config();
     // A feather material names a species file and variant: that file must load with that variant,
     // and the error points at the scene's material entry as well as into the species file.
     std::size_t species_checked = 0;

@@ -195,6 +195,10 @@ TEST_CASE("render: bad input exits 2 with file:line:column and writes nothing", 
   CHECK(r.status == 2);
   CHECK(r.output.find("badkey.yaml:5:") != std::string::npos);
   CHECK(r.output.find("did you mean 'seed'") != std::string::npos);
+  // `plumage check` creates the renderer as `render` does, so it sees the same error.
+  r = run("check " + (plumage::cli_test::scratch_dir(kSuite) / "badkey.yaml").string());
+  CHECK(r.status == 2);
+  CHECK(r.output.find("did you mean 'seed'") != std::string::npos);
   std::string moved = kPlane;
   moved.replace(moved.find("resolution: [24, 16]"), 20, "resolution: [24, 16], spp: 4");
   r = run("render " + write_scene("moved.yaml", moved).string() + " --out " + out.string());

@@ -16,41 +16,42 @@ namespace {
 // key keeps that shape's value (the assembly's body feather starts from a smaller one).
 const ParamTable<FeatherShape>& shape_table() {
   using S = FeatherShape;
-  const S d;
-  const auto pos = Limits::positive(), nonneg = Limits::non_negative();
-  static const auto table =
-      ParamTable<S>{}
-          .number("length_mm", &S::length_mm, "mm", d.length_mm, pos, "rachis length covered by the vane (base to tip)")
-          .number("calamus_mm", &S::calamus_mm, "mm", d.calamus_mm, nonneg, "bare quill below the vane")
-          .number("vane_width_mm", &S::vane_width_mm, "mm", d.vane_width_mm, pos, "full width of the vane at its widest")
-          .number("vane_asymmetry", &S::vane_asymmetry, "1", d.vane_asymmetry, Limits::closed(-0.8, 0.8),
-                  "left half-width x (1 - a), right x (1 + a)")
-          .number("camber_mm", &S::camber_mm, "mm", d.camber_mm, {}, "the vane bends down (-z) by this much at its edges")
-          .number("rachis_width_mm", &S::rachis_width_mm, "mm", d.rachis_width_mm, pos,
-                  "diameter at the base, tapering to 20 % at the tip")
-          .number("barb_spacing_mm", &S::barb_spacing_mm, "mm", d.barb_spacing_mm, pos, "along the rachis, on each side")
-          .number("barb_angle_deg", &S::barb_angle_deg, "deg", d.barb_angle_deg, Limits{1.0, 89.0, true, true},
-                  "barb direction against the rachis at the barb's base")
-          .number("barb_curl_deg", &S::barb_curl_deg, "deg", d.barb_curl_deg, Limits{0.0, 80.0, false, true},
-                  "the barb turns this much toward the tip over its length")
-          .number("barb_width_mm", &S::barb_width_mm, "mm", d.barb_width_mm, pos, "barb strip width (explicit barbules)")
-          .number("barb_segment_mm", &S::barb_segment_mm, "mm", d.barb_segment_mm, pos, "target segment length along a barb")
-          .number("barbule_length_mm", &S::barbule_length_mm, "mm", d.barbule_length_mm, pos, "barbule length")
-          .number("barbule_width_mm", &S::barbule_width_mm, "mm", d.barbule_width_mm, pos, "barbule strip width")
-          .number("barbule_spacing_mm", &S::barbule_spacing_mm, "mm", d.barbule_spacing_mm, pos,
-                  "along the barb, per side (also the level of detail's barbule spacing)")
-          .number("barbule_angle_deg", &S::barbule_angle_deg, "deg", d.barbule_angle_deg, Limits{0.0, 90.0, false, true},
-                  "barbule axis against the barb axis, in the vane plane")
-          .number("barbule_tilt_deg", &S::barbule_tilt_deg, "deg", d.barbule_tilt_deg, Limits{-90.0, 90.0, true, true},
-                  "rotation of the barbule about its axis (paper §7.3)")
-          .number("barbule_elevation_deg", &S::barbule_elevation_deg, "deg", d.barbule_elevation_deg,
-                  Limits{-90.0, 90.0, true, true}, "axis raised out of the vane plane")
-          .integer("barbule_segments", &S::barbule_segments, "1", d.barbule_segments, Limits::closed(1, 16),
-                   "quads per barbule strip")
-          .boolean("proximal_barbules", &S::proximal_barbules, d.proximal_barbules,
-                   "also the barbules on the base side of each barb")
-          .number("jitter", &S::jitter, "1", d.jitter, Limits::closed(0.0, 0.5),
-                  "relative random variation of barb angle, spacing and length");
+  static const auto table = [] {
+    const S d;
+    const auto pos = Limits::positive(), nonneg = Limits::non_negative();
+    return ParamTable<S>{}
+        .number("length_mm", &S::length_mm, "mm", d.length_mm, pos, "rachis length covered by the vane (base to tip)")
+        .number("calamus_mm", &S::calamus_mm, "mm", d.calamus_mm, nonneg, "bare quill below the vane")
+        .number("vane_width_mm", &S::vane_width_mm, "mm", d.vane_width_mm, pos, "full width of the vane at its widest")
+        .number("vane_asymmetry", &S::vane_asymmetry, "1", d.vane_asymmetry, Limits::closed(-0.8, 0.8),
+                "left half-width x (1 - a), right x (1 + a)")
+        .number("camber_mm", &S::camber_mm, "mm", d.camber_mm, {}, "the vane bends down (-z) by this much at its edges")
+        .number("rachis_width_mm", &S::rachis_width_mm, "mm", d.rachis_width_mm, pos,
+                "diameter at the base, tapering to 20 % at the tip")
+        .number("barb_spacing_mm", &S::barb_spacing_mm, "mm", d.barb_spacing_mm, pos, "along the rachis, on each side")
+        .number("barb_angle_deg", &S::barb_angle_deg, "deg", d.barb_angle_deg, Limits{1.0, 89.0, true, true},
+                "barb direction against the rachis at the barb's base")
+        .number("barb_curl_deg", &S::barb_curl_deg, "deg", d.barb_curl_deg, Limits{0.0, 80.0, false, true},
+                "the barb turns this much toward the tip over its length")
+        .number("barb_width_mm", &S::barb_width_mm, "mm", d.barb_width_mm, pos, "barb strip width (explicit barbules)")
+        .number("barb_segment_mm", &S::barb_segment_mm, "mm", d.barb_segment_mm, pos, "target segment length along a barb")
+        .number("barbule_length_mm", &S::barbule_length_mm, "mm", d.barbule_length_mm, pos, "barbule length")
+        .number("barbule_width_mm", &S::barbule_width_mm, "mm", d.barbule_width_mm, pos, "barbule strip width")
+        .number("barbule_spacing_mm", &S::barbule_spacing_mm, "mm", d.barbule_spacing_mm, pos,
+                "along the barb, per side (also the level of detail's barbule spacing)")
+        .number("barbule_angle_deg", &S::barbule_angle_deg, "deg", d.barbule_angle_deg, Limits{0.0, 90.0, false, true},
+                "barbule axis against the barb axis, in the vane plane")
+        .number("barbule_tilt_deg", &S::barbule_tilt_deg, "deg", d.barbule_tilt_deg, Limits{-90.0, 90.0, true, true},
+                "rotation of the barbule about its axis (paper §7.3)")
+        .number("barbule_elevation_deg", &S::barbule_elevation_deg, "deg", d.barbule_elevation_deg,
+                Limits{-90.0, 90.0, true, true}, "axis raised out of the vane plane")
+        .integer("barbule_segments", &S::barbule_segments, "1", d.barbule_segments, Limits::closed(1, 16),
+                 "quads per barbule strip")
+        .boolean("proximal_barbules", &S::proximal_barbules, d.proximal_barbules,
+                 "also the barbules on the base side of each barb")
+        .number("jitter", &S::jitter, "1", d.jitter, Limits::closed(0.0, 0.5),
+                "relative random variation of barb angle, spacing and length");
+  }();
   return table;
 }
 
@@ -110,92 +111,93 @@ bool has_shaft(const ObjectKeys& k) { return k.spec.kind != ObjectKind::plane; }
 const ParamTable<ObjectKeys>& object_table() {
   using K = ObjectKind;
   using O = ObjectKeys;
-  const AssemblyShape a;
-  static const auto table =
-      ParamTable<O>{}
-          .choice("type", [](O& o) -> K& { return o.spec.kind; },
-                  std::vector<std::pair<std::string_view, K>>{
-                      {"feather", K::feather}, {"assembly", K::assembly}, {"plane", K::plane}},
-                  required,
-                  "feather (one procedural feather) | assembly (barb-level feathers on a body) | plane (a square)")
-          .custom("name", "text", "-", "<type><index>", "name of the object (its meshes and messages)",
-                  [](const ParamView& p, O& o) {
-                    const char* type = o.spec.kind == K::feather ? "feather" : o.spec.kind == K::assembly ? "assembly" : "plane";
-                    o.spec.name = p.text_or("name", type + std::to_string(o.index));
-                  })
-          .text("material", &O::material, required, "a material of `materials:` (feather objects: a feather material)")
-          .integer("seed", [](O& o) -> std::uint64_t& { return o.spec.seed; }, "1", 1, Limits::non_negative(),
-                   "seed of the object's random jitter")
-          .custom("shaft_material", "text", "-", "default_shaft",
-                  "material of rachis and barbs (default_shaft: an implicit dark diffuse, albedo 0.04)",
-                  [](const ParamView& p, O& o) {
-                    if (p.has("shaft_material")) o.shaft_material = p.text("shaft_material");
-                  })
-          .only_if(has_shaft, "type: feather or assembly")
-          .choice("detail", [](O& o) -> FeatherDetail& { return o.spec.detail; },
-                  {{"barbules", FeatherDetail::barbules}, {"barb_level", FeatherDetail::barb_level}},
-                  FeatherDetail::barbules, "explicit barbules (paper §7.3) | barb-level strips (§7.4)")
-          .only_if(is<K::feather>, "type: feather")
-          .custom("shape", "map", "-", "{}", "the feather's shape (FeatherShape)",
-                  [](const ParamView& p, O& o) {
-                    o.spec.shape = p.has("shape") ? read_shape(p.child("shape"), FeatherShape{}) : FeatherShape{};
-                  })
-          .nested_specs(shape_table().specs())
-          .only_if(is<K::feather>, "type: feather")
-          .custom("position_mm", "vector", "mm", "[0, 0, 0]", "where the feather's base goes",
-                  [](const ParamView& p, O& o) { o.position_mm = read_vec3_or(p, "position_mm", {}); })
-          .only_if(is<K::feather>, "type: feather")
-          .custom("rotate_deg", "vector", "deg", "[0, 0, 0]", "Euler angles about x, then y, then z",
-                  [](const ParamView& p, O& o) { o.rotate_deg = read_vec3_or(p, "rotate_deg", {}); })
-          .only_if(is<K::feather>, "type: feather")
-          .number("scale", &O::scale, "1", 1.0, Limits::positive(), "uniform scale of the feather")
-          .only_if(is<K::feather>, "type: feather")
-          .integer("count", [](O& o) -> int& { return o.spec.assembly.count; }, "1", a.count, Limits::closed(1, 100000),
-                   "feathers on the body")
-          .only_if(is<K::assembly>, "type: assembly")
-          .number("lie_deg", [](O& o) -> double& { return o.spec.assembly.lie_deg; }, "deg", a.lie_deg,
-                  Limits::closed(0, 89), "feather plane against the local tangent plane")
-          .only_if(is<K::assembly>, "type: assembly")
-          .number("heading_jitter_deg", [](O& o) -> double& { return o.spec.assembly.heading_jitter_deg; }, "deg",
-                  a.heading_jitter_deg, Limits::closed(0, 180), "random heading")
-          .only_if(is<K::assembly>, "type: assembly")
-          .number("lie_jitter_deg", [](O& o) -> double& { return o.spec.assembly.lie_jitter_deg; }, "deg",
-                  a.lie_jitter_deg, Limits::closed(0, 45), "random lie")
-          .only_if(is<K::assembly>, "type: assembly")
-          .number("size_jitter", [](O& o) -> double& { return o.spec.assembly.size_jitter; }, "1", a.size_jitter,
-                  Limits::closed(0, 0.9), "relative random size")
-          .only_if(is<K::assembly>, "type: assembly")
-          .number("position_jitter", [](O& o) -> double& { return o.spec.assembly.position_jitter; }, "1",
-                  a.position_jitter, Limits::closed(0, 1), "random position, of the lattice spacing")
-          .only_if(is<K::assembly>, "type: assembly")
-          .custom("body", "map", "-", "required", "the ellipsoid the feathers sit on",
-                  [](const ParamView& p, O& o) {
-                    const ParamView body = p.child("body");
-                    BodyShape& b = o.spec.assembly.body;
-                    b = body_table().read(body);
-                    if (!(b.lat_min_deg < b.lat_max_deg)) body.fail("lat_max_deg", "must exceed lat_min_deg");
-                  })
-          .nested_specs(body_table().specs())
-          .only_if(is<K::assembly>, "type: assembly")
-          .custom("feather", "map", "-", "{length_mm: 12, vane_width_mm: 9, ...}",
-                  "the mean body feather (FeatherShape; defaults: 12 mm long, 9 mm wide, barbs every 0.5 mm in 0.8 mm "
-                  "segments, rachis 0.3 mm, calamus 1 mm, camber 0.5 mm)",
-                  [](const ParamView& p, O& o) {
-                    o.spec.assembly.feather = p.has("feather") ? read_shape(p.child("feather"), body_feather()) : body_feather();
-                  })
-          .nested_specs(shape_table().specs())
-          .only_if(is<K::assembly>, "type: assembly")
-          .custom("center_mm", "vector", "mm", "[0, 0, 0]", "centre of the square",
-                  [](const ParamView& p, O& o) { o.spec.center_mm = read_vec3_or(p, "center_mm", {}); })
-          .only_if(is<K::plane>, "type: plane")
-          .custom("normal", "vector", "1", "[0, 0, 1]", "the side it faces (normalised)",
-                  [](const ParamView& p, O& o) {
-                    if (p.has("normal")) o.spec.normal = read_unit3(p, "normal");
-                  })
-          .only_if(is<K::plane>, "type: plane")
-          .number("size_mm", [](O& o) -> double& { return o.spec.size_mm; }, "mm", 100.0, Limits::positive(),
-                  "side of the square")
-          .only_if(is<K::plane>, "type: plane");
+  static const auto table = [] {
+    const AssemblyShape a;
+    return ParamTable<O>{}
+        .choice("type", [](O& o) -> K& { return o.spec.kind; },
+                std::vector<std::pair<std::string_view, K>>{
+                    {"feather", K::feather}, {"assembly", K::assembly}, {"plane", K::plane}},
+                required,
+                "feather (one procedural feather) | assembly (barb-level feathers on a body) | plane (a square)")
+        .custom("name", "text", "-", "<type><index>", "name of the object (its meshes and messages)",
+                [](const ParamView& p, O& o) {
+                  const char* type = o.spec.kind == K::feather ? "feather" : o.spec.kind == K::assembly ? "assembly" : "plane";
+                  o.spec.name = p.text_or("name", type + std::to_string(o.index));
+                })
+        .text("material", &O::material, required, "a material of `materials:` (feather objects: a feather material)")
+        .integer("seed", [](O& o) -> std::uint64_t& { return o.spec.seed; }, "1", 1, Limits::non_negative(),
+                 "seed of the object's random jitter")
+        .custom("shaft_material", "text", "-", "default_shaft",
+                "material of rachis and barbs (default_shaft: an implicit dark diffuse, albedo 0.04)",
+                [](const ParamView& p, O& o) {
+                  if (p.has("shaft_material")) o.shaft_material = p.text("shaft_material");
+                })
+        .only_if(has_shaft, "type: feather or assembly")
+        .choice("detail", [](O& o) -> FeatherDetail& { return o.spec.detail; },
+                {{"barbules", FeatherDetail::barbules}, {"barb_level", FeatherDetail::barb_level}},
+                FeatherDetail::barbules, "explicit barbules (paper §7.3) | barb-level strips (§7.4)")
+        .only_if(is<K::feather>, "type: feather")
+        .custom("shape", "map", "-", "{}", "the feather's shape (FeatherShape)",
+                [](const ParamView& p, O& o) {
+                  o.spec.shape = p.has("shape") ? read_shape(p.child("shape"), FeatherShape{}) : FeatherShape{};
+                })
+        .nested_specs(shape_table().specs())
+        .only_if(is<K::feather>, "type: feather")
+        .custom("position_mm", "vector", "mm", "[0, 0, 0]", "where the feather's base goes",
+                [](const ParamView& p, O& o) { o.position_mm = read_vec3_or(p, "position_mm", {}); })
+        .only_if(is<K::feather>, "type: feather")
+        .custom("rotate_deg", "vector", "deg", "[0, 0, 0]", "Euler angles about x, then y, then z",
+                [](const ParamView& p, O& o) { o.rotate_deg = read_vec3_or(p, "rotate_deg", {}); })
+        .only_if(is<K::feather>, "type: feather")
+        .number("scale", &O::scale, "1", 1.0, Limits::positive(), "uniform scale of the feather")
+        .only_if(is<K::feather>, "type: feather")
+        .integer("count", [](O& o) -> int& { return o.spec.assembly.count; }, "1", a.count, Limits::closed(1, 100000),
+                 "feathers on the body")
+        .only_if(is<K::assembly>, "type: assembly")
+        .number("lie_deg", [](O& o) -> double& { return o.spec.assembly.lie_deg; }, "deg", a.lie_deg,
+                Limits::closed(0, 89), "feather plane against the local tangent plane")
+        .only_if(is<K::assembly>, "type: assembly")
+        .number("heading_jitter_deg", [](O& o) -> double& { return o.spec.assembly.heading_jitter_deg; }, "deg",
+                a.heading_jitter_deg, Limits::closed(0, 180), "random heading")
+        .only_if(is<K::assembly>, "type: assembly")
+        .number("lie_jitter_deg", [](O& o) -> double& { return o.spec.assembly.lie_jitter_deg; }, "deg",
+                a.lie_jitter_deg, Limits::closed(0, 45), "random lie")
+        .only_if(is<K::assembly>, "type: assembly")
+        .number("size_jitter", [](O& o) -> double& { return o.spec.assembly.size_jitter; }, "1", a.size_jitter,
+                Limits::closed(0, 0.9), "relative random size")
+        .only_if(is<K::assembly>, "type: assembly")
+        .number("position_jitter", [](O& o) -> double& { return o.spec.assembly.position_jitter; }, "1",
+                a.position_jitter, Limits::closed(0, 1), "random position, of the lattice spacing")
+        .only_if(is<K::assembly>, "type: assembly")
+        .custom("body", "map", "-", "required", "the ellipsoid the feathers sit on",
+                [](const ParamView& p, O& o) {
+                  const ParamView body = p.child("body");
+                  BodyShape& b = o.spec.assembly.body;
+                  b = body_table().read(body);
+                  if (!(b.lat_min_deg < b.lat_max_deg)) body.fail("lat_max_deg", "must exceed lat_min_deg");
+                })
+        .nested_specs(body_table().specs())
+        .only_if(is<K::assembly>, "type: assembly")
+        .custom("feather", "map", "-", "{length_mm: 12, vane_width_mm: 9, ...}",
+                "the mean body feather (FeatherShape; defaults: 12 mm long, 9 mm wide, barbs every 0.5 mm in 0.8 mm "
+                "segments, rachis 0.3 mm, calamus 1 mm, camber 0.5 mm)",
+                [](const ParamView& p, O& o) {
+                  o.spec.assembly.feather = p.has("feather") ? read_shape(p.child("feather"), body_feather()) : body_feather();
+                })
+        .nested_specs(shape_table().specs())
+        .only_if(is<K::assembly>, "type: assembly")
+        .custom("center_mm", "vector", "mm", "[0, 0, 0]", "centre of the square",
+                [](const ParamView& p, O& o) { o.spec.center_mm = read_vec3_or(p, "center_mm", {}); })
+        .only_if(is<K::plane>, "type: plane")
+        .custom("normal", "vector", "1", "[0, 0, 1]", "the side it faces (normalised)",
+                [](const ParamView& p, O& o) {
+                  if (p.has("normal")) o.spec.normal = read_unit3(p, "normal");
+                })
+        .only_if(is<K::plane>, "type: plane")
+        .number("size_mm", [](O& o) -> double& { return o.spec.size_mm; }, "mm", 100.0, Limits::positive(),
+                "side of the square")
+        .only_if(is<K::plane>, "type: plane");
+  }();
   return table;
 }
 
