@@ -83,9 +83,9 @@ fs::path write_scene(const std::string& name, const std::string& renderer_line, 
   return file;
 }
 
-RenderJobOptions with_settings(std::vector<std::pair<std::string, std::string>> settings) {
+RenderJobOptions with_settings(const std::vector<std::pair<std::string, std::string>>& settings) {
   RenderJobOptions o;
-  o.renderer_settings = std::move(settings);
+  for (const auto& [key, value] : settings) o.renderer_settings.push_back({key, value, "test --" + key});
   return o;
 }
 
@@ -100,7 +100,8 @@ TEST_CASE("render job: the renderer reads its section and the overrides through 
   const fs::path named = write_scene("named.yaml", "renderer: stub");
   CHECK(RenderJob(named, with_settings({{"spp", "3"}}), stub_registry()).renderer().describe() == "3 spp, seed 1");
   // Out of range: the renderer's table names the key.
-  CHECK_THROWS_WITH(RenderJob(scene, with_settings({{"spp", "100"}}), stub_registry()), Catch::Contains("renderer.spp"));
+  CHECK_THROWS_WITH(RenderJob(scene, with_settings({{"spp", "100"}}), stub_registry()),
+                    Catch::Contains("test --spp") && Catch::Contains("renderer.spp"));
   // A key the renderer does not have: refused with the nearest one.
   CHECK_THROWS_WITH(RenderJob(scene, with_settings({{"sed", "2"}}), stub_registry()), Catch::Contains("did you mean 'seed'"));
   // In the file: the line of the section.

@@ -34,11 +34,14 @@ RenderJobOptions job_options(const Options& o) {
   RenderJobOptions j;
   j.view = o.view;
   j.width = o.width, j.height = o.height;
-  if (o.spp > 0) j.renderer_settings.emplace_back("spp", std::to_string(o.spp));
-  if (o.seed) j.renderer_settings.emplace_back("seed", std::to_string(*o.seed));
-  if (!o.lod.empty()) j.renderer_settings.emplace_back("lod", o.lod);
+  auto set = [&j](const std::string& key, const std::string& value) {
+    j.renderer_settings.push_back({key, value, "command line --" + key});
+  };
+  if (o.spp > 0) set("spp", std::to_string(o.spp));
+  if (o.seed) set("seed", std::to_string(*o.seed));
+  if (!o.lod.empty()) set("lod", o.lod);
   if (o.threads > 0) {
-    j.renderer_settings.emplace_back("threads", std::to_string(o.threads));
+    set("threads", std::to_string(o.threads));
     j.max_threads = static_cast<std::size_t>(o.threads);
   }
   return j;

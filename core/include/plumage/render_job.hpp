@@ -30,10 +30,14 @@ namespace plumage {
 struct RenderJobOptions {
   std::string view;           // render only this view of the scene's `views:` (empty: every view)
   int width = 0, height = 0;  // both > 0: every view's image size instead of render.resolution
-  // (key, YAML value) of the renderer's own section, e.g. {"spp", "4"}: applied on top of the
-  // scene's `renderer:` and read by the renderer's table (unknown keys and bad values are
-  // ConfigErrors naming the key).
-  std::vector<std::pair<std::string, std::string>> renderer_settings;
+  // Keys of the renderer's own section, e.g. {"spp", "4", "command line --spp"}: written over the
+  // scene's `renderer:` and read by the renderer's table (an unknown key or a bad value is a
+  // ConfigError naming the key and the setting's source).
+  struct RendererSetting {
+    std::string key, yaml;
+    std::string source = "override";
+  };
+  std::vector<RendererSetting> renderer_settings;
   std::size_t max_threads = 0;  // > 0: at most this many oneTBB threads in every step of the job
 };
 

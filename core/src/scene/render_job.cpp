@@ -27,18 +27,19 @@ std::string yaml_quoted(const std::string& s) {
 // job's settings written into it, created through the registry: the renderer's table reads the
 // file's keys and the overrides alike, and refuses keys it does not declare.
 std::unique_ptr<Renderer> create_renderer(const SceneConfig& c,
-                                          const std::vector<std::pair<std::string, std::string>>& settings,
+                                          const std::vector<RenderJobOptions::RendererSetting>& settings,
                                           const PluginRegistry& registry) {
   std::vector<ConfigDocument::Override> overrides;
   const bool is_map = c.has_renderer_section && c.root.node("renderer").is_map();
   const bool named = c.has_renderer_section && !is_map;
+  const std::string scene = c.file.string();
   if (!is_map) {
     const std::string type = named ? c.root.text("renderer") : std::string("pathtracer");
-    overrides.push_back({"renderer", "{type: " + yaml_quoted(type) + "}", true});
+    overrides.push_back({"renderer", "{type: " + yaml_quoted(type) + "}", true, scene});
   } else if (!c.root.child("renderer").has("type")) {
-    overrides.push_back({"renderer.type", "pathtracer", true});
+    overrides.push_back({"renderer.type", "pathtracer", true, scene + " (default renderer)"});
   }
-  for (const auto& [key, value] : settings) overrides.push_back({"renderer." + key, value, true});
+  for (const auto& s : settings) overrides.push_back({"renderer." + s.key, s.yaml, true, s.source});
   const ConfigDocument derived = ConfigDocument::derive(c.root, overrides, c.file.parent_path(), c.file.string());
   try {
     return registry.create<Renderer>(derived.root().child("renderer"), "type", registry.context(c.file.parent_path()));
