@@ -40,10 +40,6 @@ Scene feather_scene(const RenderBenchParams& b, Geometry& geometry) {
   SceneMaterial vane;
   vane.name = "vane";
   vane.kind = SceneMaterial::Kind::feather;
-  if (!std::filesystem::exists(b.material)) {
-    throw Error("bench render: feather material " + b.material +
-                " not found (characterise one first, or pass --material <file.plm>)");
-  }
   vane.feather = std::make_shared<FeatherBsdf>(std::make_shared<FeatherMaterial>(read_feather_material(b.material)));
   s.materials = {shaft, vane};
   g.shaft.material = 0;
@@ -107,6 +103,14 @@ const ParamTable<RenderBenchParams>& render_bench_table() {
                   L::automatic, "level of detail of the render (the renderer's `lod`)")
           .text("out", &RenderBenchParams::out, "", "also write <out>.exr and <out>.png of the render");
   return table;
+}
+
+std::unique_ptr<RenderBenchmark> make_render_benchmark(const ParamView& params) {
+  RenderBenchParams b = render_bench_table().read(params);
+  if (!std::filesystem::exists(b.material)) {
+    params.fail("material", "no feather material " + b.material + " (characterise one first, or pass --material <file.plm>)");
+  }
+  return std::make_unique<RenderBenchmark>(std::move(b));
 }
 
 Benchmark::Report RenderBenchmark::run(const Options& options) const {

@@ -3,6 +3,7 @@
 // [--record docs/benchmarks.md]`, section "render" of docs/benchmarks.md.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "plumage/benchmark.hpp"
@@ -30,5 +31,8 @@ class RenderBenchmark final : public Benchmark {
  private:
   RenderBenchParams params_;
 };
+
+// The factory: the table's values, and the material file must exist (bad input, before any work).
+std::unique_ptr<RenderBenchmark> make_render_benchmark(const ParamView& params);
 
 }  // namespace plumage::pathtracer

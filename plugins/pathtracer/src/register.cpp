@@ -45,9 +45,7 @@ void register_pathtracer(plumage::Registrar& registrar) {
        .version = "1.0.0",
        .summary = "path tracer on a single feather: time, rays/s vs Embree's raw traversal (docs/benchmarks.md \"render\")",
        .params = pt::render_bench_table().specs()},
-      [](const plumage::ParamView& p, const plumage::PluginContext&) {
-        return std::make_unique<pt::RenderBenchmark>(pt::render_bench_table().read(p));
-      });
+      [](const plumage::ParamView& p, const plumage::PluginContext&) { return pt::make_render_benchmark(p); });
 }
 
 }  // namespace
