@@ -3,10 +3,11 @@
 //
 // Hemisphere panels (paper Fig. 10): for an incident (θ_i, φ_i), the mean BRDF f̄ or instance
 // f_k (paper Eqs. 16, 22) over the unit disk of (ω_o,x, ω_o,y). Pixel value: the spectrum
-// f·cos θ_o over the material's wavelength bins (the lobe L of spec §3: reflected power per
-// unit projected solid angle, so the disk integral of a panel is the directional albedo) → XYZ
-// as a reflectance under D65, bin i constant on [λ_i, λ_i + width] (spec §4.12) → linear sRGB ×
-// exposure → clip → sRGB transfer.
+// f·cos θ_o over the material's wavelength bins (the cosine-weighted lobe L of spec §3, whose
+// integral ∫ L dω over the hemisphere is the directional albedo; a pixel covers projected solid
+// angle cos θ_o dω, so the albedo is the disk integral of L / cos θ_o) → XYZ as a reflectance
+// under D65, bin i constant on [λ_i, λ_i + width] (spec §4.12) → linear sRGB × exposure → clip →
+// sRGB transfer.
 //
 // White furnace: at every table entry (nodes with cos θ_i, cos φ_i > 0) and cell centre of every
 // bin, A_r (the fitter's accurate hemisphere integral of the lobe the BSDF evaluates) + T ≤ 1;
