@@ -12,57 +12,43 @@ namespace {
 
 // ---- feather shape ---------------------------------------------------------------------------
 
-// The defaults are FeatherShape's own (feather_geometry.hpp). Read into a given shape, an absent
-// key keeps that shape's value (the assembly's body feather starts from a smaller one).
-const ParamTable<FeatherShape>& shape_table() {
+// The rows of a feather shape with the defaults of `d`: FeatherShape's own (feather_geometry.hpp)
+// for a feather object, a smaller feather for an assembly's body feather.
+ParamTable<FeatherShape> make_shape_table(const FeatherShape& d) {
   using S = FeatherShape;
-  static const auto table = [] {
-    const S d;
-    const auto pos = Limits::positive(), nonneg = Limits::non_negative();
-    return ParamTable<S>{}
-        .number("length_mm", &S::length_mm, "mm", d.length_mm, pos, "rachis length covered by the vane (base to tip)")
-        .number("calamus_mm", &S::calamus_mm, "mm", d.calamus_mm, nonneg, "bare quill below the vane")
-        .number("vane_width_mm", &S::vane_width_mm, "mm", d.vane_width_mm, pos, "full width of the vane at its widest")
-        .number("vane_asymmetry", &S::vane_asymmetry, "1", d.vane_asymmetry, Limits::closed(-0.8, 0.8),
-                "left half-width x (1 - a), right x (1 + a)")
-        .number("camber_mm", &S::camber_mm, "mm", d.camber_mm, {}, "the vane bends down (-z) by this much at its edges")
-        .number("rachis_width_mm", &S::rachis_width_mm, "mm", d.rachis_width_mm, pos,
-                "diameter at the base, tapering to 20 % at the tip")
-        .number("barb_spacing_mm", &S::barb_spacing_mm, "mm", d.barb_spacing_mm, pos, "along the rachis, on each side")
-        .number("barb_angle_deg", &S::barb_angle_deg, "deg", d.barb_angle_deg, Limits{1.0, 89.0, true, true},
-                "barb direction against the rachis at the barb's base")
-        .number("barb_curl_deg", &S::barb_curl_deg, "deg", d.barb_curl_deg, Limits{0.0, 80.0, false, true},
-                "the barb turns this much toward the tip over its length")
-        .number("barb_width_mm", &S::barb_width_mm, "mm", d.barb_width_mm, pos, "barb strip width (explicit barbules)")
-        .number("barb_segment_mm", &S::barb_segment_mm, "mm", d.barb_segment_mm, pos, "target segment length along a barb")
-        .number("barbule_length_mm", &S::barbule_length_mm, "mm", d.barbule_length_mm, pos, "barbule length")
-        .number("barbule_width_mm", &S::barbule_width_mm, "mm", d.barbule_width_mm, pos, "barbule strip width")
-        .number("barbule_spacing_mm", &S::barbule_spacing_mm, "mm", d.barbule_spacing_mm, pos,
-                "along the barb, per side (also the level of detail's barbule spacing)")
-        .number("barbule_angle_deg", &S::barbule_angle_deg, "deg", d.barbule_angle_deg, Limits{0.0, 90.0, false, true},
-                "barbule axis against the barb axis, in the vane plane")
-        .number("barbule_tilt_deg", &S::barbule_tilt_deg, "deg", d.barbule_tilt_deg, Limits{-90.0, 90.0, true, true},
-                "rotation of the barbule about its axis (paper §7.3)")
-        .number("barbule_elevation_deg", &S::barbule_elevation_deg, "deg", d.barbule_elevation_deg,
-                Limits{-90.0, 90.0, true, true}, "axis raised out of the vane plane")
-        .integer("barbule_segments", &S::barbule_segments, "1", d.barbule_segments, Limits::closed(1, 16),
-                 "quads per barbule strip")
-        .boolean("proximal_barbules", &S::proximal_barbules, d.proximal_barbules,
-                 "also the barbules on the base side of each barb")
-        .number("jitter", &S::jitter, "1", d.jitter, Limits::closed(0.0, 0.5),
-                "relative random variation of barb angle, spacing and length");
-  }();
-  return table;
-}
-
-FeatherShape read_shape(const ParamView& s, FeatherShape f) {
-  shape_table().read_into(s, f);
-  try {
-    validate_feather_shape(f);
-  } catch (const Error& e) {
-    s.fail_here(e.what());
-  }
-  return f;
+  const auto pos = Limits::positive(), nonneg = Limits::non_negative();
+  return ParamTable<S>{}
+      .number("length_mm", &S::length_mm, "mm", d.length_mm, pos, "rachis length covered by the vane (base to tip)")
+      .number("calamus_mm", &S::calamus_mm, "mm", d.calamus_mm, nonneg, "bare quill below the vane")
+      .number("vane_width_mm", &S::vane_width_mm, "mm", d.vane_width_mm, pos, "full width of the vane at its widest")
+      .number("vane_asymmetry", &S::vane_asymmetry, "1", d.vane_asymmetry, Limits::closed(-0.8, 0.8),
+              "left half-width x (1 - a), right x (1 + a)")
+      .number("camber_mm", &S::camber_mm, "mm", d.camber_mm, {}, "the vane bends down (-z) by this much at its edges")
+      .number("rachis_width_mm", &S::rachis_width_mm, "mm", d.rachis_width_mm, pos,
+              "diameter at the base, tapering to 20 % at the tip")
+      .number("barb_spacing_mm", &S::barb_spacing_mm, "mm", d.barb_spacing_mm, pos, "along the rachis, on each side")
+      .number("barb_angle_deg", &S::barb_angle_deg, "deg", d.barb_angle_deg, Limits{1.0, 89.0, true, true},
+              "barb direction against the rachis at the barb's base")
+      .number("barb_curl_deg", &S::barb_curl_deg, "deg", d.barb_curl_deg, Limits{0.0, 80.0, false, true},
+              "the barb turns this much toward the tip over its length")
+      .number("barb_width_mm", &S::barb_width_mm, "mm", d.barb_width_mm, pos, "barb strip width (explicit barbules)")
+      .number("barb_segment_mm", &S::barb_segment_mm, "mm", d.barb_segment_mm, pos, "target segment length along a barb")
+      .number("barbule_length_mm", &S::barbule_length_mm, "mm", d.barbule_length_mm, pos, "barbule length")
+      .number("barbule_width_mm", &S::barbule_width_mm, "mm", d.barbule_width_mm, pos, "barbule strip width")
+      .number("barbule_spacing_mm", &S::barbule_spacing_mm, "mm", d.barbule_spacing_mm, pos,
+              "along the barb, per side (also the level of detail's barbule spacing)")
+      .number("barbule_angle_deg", &S::barbule_angle_deg, "deg", d.barbule_angle_deg, Limits{0.0, 90.0, false, true},
+              "barbule axis against the barb axis, in the vane plane")
+      .number("barbule_tilt_deg", &S::barbule_tilt_deg, "deg", d.barbule_tilt_deg, Limits{-90.0, 90.0, true, true},
+              "rotation of the barbule about its axis (paper §7.3)")
+      .number("barbule_elevation_deg", &S::barbule_elevation_deg, "deg", d.barbule_elevation_deg,
+              Limits{-90.0, 90.0, true, true}, "axis raised out of the vane plane")
+      .integer("barbule_segments", &S::barbule_segments, "1", d.barbule_segments, Limits::closed(1, 16),
+               "quads per barbule strip")
+      .boolean("proximal_barbules", &S::proximal_barbules, d.proximal_barbules,
+               "also the barbules on the base side of each barb")
+      .number("jitter", &S::jitter, "1", d.jitter, Limits::closed(0.0, 0.5),
+              "relative random variation of barb angle, spacing and length");
 }
 
 // The assembly's default body feather: short, broad, coarser barbs (barb-level).
@@ -71,6 +57,26 @@ FeatherShape body_feather() {
   small.length_mm = 12, small.vane_width_mm = 9, small.barb_spacing_mm = 0.5, small.barb_segment_mm = 0.8;
   small.rachis_width_mm = 0.3, small.calamus_mm = 1.0, small.camber_mm = 0.5;
   return small;
+}
+
+const ParamTable<FeatherShape>& shape_table() {
+  static const auto table = make_shape_table(FeatherShape{});
+  return table;
+}
+const ParamTable<FeatherShape>& body_feather_table() {
+  static const auto table = make_shape_table(body_feather());
+  return table;
+}
+
+// The shape `f` (the table's defaults) with the keys of `s` read into it; checked as a whole.
+FeatherShape read_shape(const ParamView& s, const ParamTable<FeatherShape>& table, FeatherShape f) {
+  table.read_into(s, f);
+  try {
+    validate_feather_shape(f);
+  } catch (const Error& e) {
+    s.fail_here(e.what());
+  }
+  return f;
 }
 
 const ParamTable<BodyShape>& body_table() {
@@ -139,7 +145,7 @@ const ParamTable<ObjectKeys>& object_table() {
         .only_if(is<K::feather>, "type: feather")
         .custom("shape", "map", "-", "{}", "the feather's shape (FeatherShape)",
                 [](const ParamView& p, O& o) {
-                  o.spec.shape = p.has("shape") ? read_shape(p.child("shape"), FeatherShape{}) : FeatherShape{};
+                  o.spec.shape = p.has("shape") ? read_shape(p.child("shape"), shape_table(), FeatherShape{}) : FeatherShape{};
                 })
         .nested_specs(shape_table().specs())
         .only_if(is<K::feather>, "type: feather")
@@ -178,13 +184,12 @@ const ParamTable<ObjectKeys>& object_table() {
                 })
         .nested_specs(body_table().specs())
         .only_if(is<K::assembly>, "type: assembly")
-        .custom("feather", "map", "-", "{length_mm: 12, vane_width_mm: 9, ...}",
-                "the mean body feather (FeatherShape; defaults: 12 mm long, 9 mm wide, barbs every 0.5 mm in 0.8 mm "
-                "segments, rachis 0.3 mm, calamus 1 mm, camber 0.5 mm)",
+        .custom("feather", "map", "-", "{}", "the mean body feather (FeatherShape, smaller defaults)",
                 [](const ParamView& p, O& o) {
-                  o.spec.assembly.feather = p.has("feather") ? read_shape(p.child("feather"), body_feather()) : body_feather();
+                  o.spec.assembly.feather =
+                      p.has("feather") ? read_shape(p.child("feather"), body_feather_table(), body_feather()) : body_feather();
                 })
-        .nested_specs(shape_table().specs())
+        .nested_specs(body_feather_table().specs())
         .only_if(is<K::assembly>, "type: assembly")
         .custom("center_mm", "vector", "mm", "[0, 0, 0]", "centre of the square",
                 [](const ParamView& p, O& o) { o.spec.center_mm = read_vec3_or(p, "center_mm", {}); })
