@@ -16,9 +16,12 @@ SpeciesConfig load_species_segment(const std::filesystem::path& file, double wid
     throw ConfigError(root.mark(), "structure.outline.width_um",
                       "missing: a segment of a chosen width needs the species' outline width to replace");
   }
-  std::vector<ConfigDocument::Override> overrides{{"structure.outline.width_um", std::to_string(width_um)}};
+  const std::string source = "segment of width " + std::to_string(width_um) + " um";
+  std::vector<ConfigDocument::Override> overrides{
+      {.path = "structure.outline.width_um", .yaml = std::to_string(width_um), .source = source}};
   if (root.child("structure").child("outline").has("corner_um")) {
-    overrides.push_back({"structure.outline.corner_um", std::to_string(std::min(1.0, 0.1 * width_um))});
+    overrides.push_back(
+        {.path = "structure.outline.corner_um", .yaml = std::to_string(std::min(1.0, 0.1 * width_um)), .source = source});
   }
   const ConfigDocument segment = ConfigDocument::derive(
       root, overrides, doc.directory(), file.string() + " (outline width_um = " + std::to_string(width_um) + ")");

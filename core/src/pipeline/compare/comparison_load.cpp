@@ -50,7 +50,8 @@ std::shared_ptr<const StructureGenerator> segment_generator(const ParamView& roo
   if (!has_path(structure, width_path)) {
     root.fail("segment_um", "the species' structure has no outline.width_um to set (" + species_file.string() + ")");
   }
-  std::vector<ConfigDocument::Override> overrides{{width_path, format_width(c.segment_um)}};
+  std::vector<ConfigDocument::Override> overrides{
+      {.path = width_path, .yaml = format_width(c.segment_um), .source = root.mark_of("segment_um").str() + " segment_um"}};
   if (std::optional<ParamView> extra = root.child_if("structure_overrides")) {
     const std::vector<std::string> keys = extra->keys();
     for (const auto& key : keys) {
@@ -60,7 +61,7 @@ std::shared_ptr<const StructureGenerator> segment_generator(const ParamView& roo
       for (const auto& other : keys) {
         if (other != key && covers(other, key)) extra->fail(key, "overlaps the override of '" + other + "'");
       }
-      overrides.push_back({key, detail::flow_yaml_text(value)});
+      overrides.push_back({.path = key, .yaml = detail::flow_yaml_text(value), .source = value.mark().str() + " " + value.path()});
     }
   }
   const ConfigDocument segment = ConfigDocument::derive(
