@@ -190,6 +190,7 @@ void draw_pattern(const FarFieldSet& set, const std::string& png, const std::str
 void run(AppContext& context, const Options& o) {
   const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
   if (!config.structure) throw UsageError(o.config + ": no `structure:` section to simulate");
+  prepare_species(config, context.preparation());
   const auto& sim = config.simulation;
   const auto lambdas = o.lambda_nm.empty() ? sim.wavelengths_nm : parse_samples(o.lambda_nm, "--lambda-nm");
   const auto thetas = parse_samples(o.theta_deg, "--theta-deg");

@@ -52,6 +52,7 @@ void run(AppContext& context, const Options& o) {
       }
       continue;
     }
+    prepare_species(s, context.preparation());
     ++used;
     std::vector<LocalReflection::Request> requests;
     for (double t : thetas) {

@@ -54,6 +54,7 @@ class ApproximateLadder final : public AccuracyLadder {
       throw;
     }
     std::filesystem::remove(path);
+    prepare_species(config, {});  // a ladder builds what it needs (no CLI options reach it)
     const CrossSection cs = config.structure->generate(0);
     if (const auto problems = validate(cs); !problems.empty()) {
       throw Error("accuracy ladder 'approximate': " + species_ + " at " + std::to_string(width_um) +

@@ -32,6 +32,7 @@ class FitLadder final : public AccuracyLadder {
       throw Error("accuracy ladder 'fit': " + species_ + " not found (run `plumage bench ladder` from the source tree's top folder)");
     }
     const SpeciesConfig config = load_species_config(species_, registry_);
+    prepare_species(config, {});  // a ladder builds what it needs (no CLI options reach it)
     if (!config.structure || !config.solver) throw Error("accuracy ladder 'fit': " + species_ + " has no structure or solver");
     const std::vector<int> ladder = options.quick ? std::vector<int>{2, 5, 10} : std::vector<int>{2, 5, 10, 20, 50};
     const int reference_instances = options.quick ? 40 : 200;
