@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
   add_brdf_command(app, context);
   add_merge_command(app, context);
   add_render_command(app, context);
+  // `bench` hands everything after it to the benchmark (prefix command): nothing falls through.
+  app.get_subcommand("bench")->fallthrough(false);
 
   try {
     app.parse(argc, argv);

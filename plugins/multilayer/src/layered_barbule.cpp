@@ -78,13 +78,13 @@ ParamTable<LP>& add_common_rows(ParamTable<LP>& t) {
                                                               {"films", Model::films}},
               required,
               "granule_gap (type 1) | melanosome_rows (types 2-3) | platelets (type 4) | films (conformal films)")
+      .number("cortex_nm", &LP::cortex_nm, "nm", required, Limits::non_negative(), "keratin cortex under the top")
       .custom("outline", "map", "-", "required",
               "top and bottom surfaces (core barbule_outline.hpp; platelets compute thickness_um)",
               [](const ParamView& p, LP& o) {
                 o.outline = parse_outline_spec(p.child("outline"), o.model != Model::platelets);
               })
       .nested_specs(outline_table().specs())
-      .number("cortex_nm", &LP::cortex_nm, "nm", required, Limits::non_negative(), "keratin cortex under the top")
       .custom("body", "material", "-", "keratin", "material of the barbule body", material_reader("body", &LP::body))
       .number("arc_spacing_nm", &LP::arc_step_nm, "nm", 10.0, Limits::positive(),
               "vertex spacing on melanosome and bubble outlines")

@@ -6,7 +6,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <iostream>
 #include <sstream>
@@ -181,4 +183,47 @@ TEST_CASE("photonic_crystal: the preview option is used only for larger tables",
   model->prepare({PreparationOptions::Tables::preview, {}});
   CHECK_FALSE(captured.echoed("photonic_crystal.preview_table"));
   CHECK(f.cached_files() == 1);
+}
+
+TEST_CASE("photonic_crystal: the preview option puts the preview table in place of a larger one, with a warning", "[photonic-crystal][table][prepare]") {
+  CrystalFixture f("plumage_test_pc_preview");
+  // 5 x 5 x 5 entries: larger than the 4 x 5 x 5 preview grid.
+  const std::string request =
+      "crystal: mallard-green.yaml\nlambda_nm: [500, 600]\nn_lambda: 5\nn_theta: 5\nn_phi: 5\n";
+  // A synthetic preview table where the preview table is cached (docs/formats.md: key = FNV-1a of
+  // the crystal file's bytes, the builder, its preview fidelity and the preview grid), so that no
+  // FDTD runs here.
+  std::ifstream in(f.ctx.config_dir / "mallard-green.yaml", std::ios::binary);
+  const std::string crystal_bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string key =
+      "crystal=" + fnv1a_hex(crystal_bytes) + ";builder=fdtd_periodic;fidelity{preview};grid=500,600,4,5,5";
+  const fs::path preview_file = f.ctx.cache_dir / "tables" / ("mallard-green-preview-" + fnv1a_hex(key) + ".plt");
+  const TableGrid g = TableGrid::uniform(500, 600, 4, 5, 5);
+  ReflectionTable t(g, {"mallard-green", 170.0, "", 15.0, "test", "WARNING: synthetic entries [test.synthetic]"});
+  for (std::size_t l = 0; l < 4; ++l)
+    for (std::size_t i = 0; i < 5; ++i)
+      for (std::size_t j = 0; j < 5; ++j) t.at(l, i, j) = {{0.3, 0.01 * l}, {0.0, 0.0}, {0.0, 0.0}, {0.2, 0.0}};
+  fs::create_directories(preview_file.parent_path());
+  t.save(preview_file);
+
+  CapturedWarnings captured;
+  auto model = f.create(request);
+  CHECK_THAT(model->pending_preparation(),
+             Catch::StartsWith("build the reflection table of mallard-green (5 x 5 x 5 entries)"));
+  model->prepare({PreparationOptions::Tables::preview, {}});
+  CHECK(f.cached_files() == 1);  // nothing built: the cached preview table serves
+  CHECK(captured.count("photonic_crystal.preview_table") == 1);
+  CHECK_THAT(captured.message("photonic_crystal.preview_table"),
+             Catch::Contains(preview_file.string()) && Catch::Contains("mallard-green (5 x 5 x 5 entries)") &&
+                 Catch::Contains("tables = preview"));
+  CHECK(captured.count("test.synthetic") == 1);  // the table's own warnings come along
+  const LocalReflection::Request r{550.0, {0.2, 0.1}, nullptr};
+  CHECK(model->reflect_one(r).ss == t.query(550.0, r.incidence).ss);
+  // Every preparation raises them again, so each run (and file) made with the shortcut says so.
+  model->prepare({PreparationOptions::Tables::preview, {}});
+  CHECK(captured.count("photonic_crystal.preview_table") == 2);
+  // Without the shortcut the preview table is not used: never refuses (the full table is missing).
+  auto strict = f.create(request);
+  CHECK_THAT(error_of([&] { strict->prepare({PreparationOptions::Tables::never, {}}); }),
+             Catch::Contains("mallard-green (5 x 5 x 5 entries)") && Catch::Contains("never"));
 }
