@@ -64,7 +64,6 @@ Run run_width(AppContext& context, const BemBench& b, double width_um) {
   const auto path = segment_config(b.config, width_um, "bench bem");
   const SpeciesConfig cfg = load_species_config(path, context.registry());
   std::filesystem::remove(path);
-  prepare_species(cfg, context.preparation());
   const CrossSection cs = cfg.structure->generate(0);
   // Narrow segments can be outside the generator's valid range (at 0.3 um the hummingbird's
   // platelets cross each other and the outline): timing such a mesh would be meaningless.
@@ -74,6 +73,7 @@ Run run_width(AppContext& context, const BemBench& b, double width_um) {
       << problems.front() << "); choose a wider segment";
     throw UsageError(m.str());
   }
+  prepare_species(cfg, context.preparation());
   const double theta = deg_to_rad(b.theta_deg);
   std::vector<double> phi_i;
   if (b.azimuths >= 20 || b.azimuths < 2) {

@@ -37,10 +37,10 @@ struct SimulateBench {
 // instance outside the timed region (they serve every unit of a characterisation).
 void bench_simulate(AppContext& context, const SimulateBench& b) {
   const SpeciesConfig config = load_species_config(b.config, context.registry());
-  prepare_species(config, context.preparation());
   if (!config.structure || config.solver_type != "approximate") {
     throw UsageError(b.config + ": bench simulate needs a structure and the approximate solver");
   }
+  prepare_species(config, context.preparation());
   const auto* solver = dynamic_cast<const ApproximateSolver*>(config.solver.get());
   const int n = b.instances;
   const auto t_prep0 = std::chrono::steady_clock::now();

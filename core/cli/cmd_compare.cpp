@@ -428,10 +428,6 @@ void run(AppContext& context, const Options& o) {
     c.instance = static_cast<std::uint64_t>(*o.instance);
   }
   const fs::path out_dir = o.out.empty() ? fs::path(c.name + "-compare") : fs::path(o.out);
-  // The preparation step (crystal tables) of every local reflection the methods that run use, once.
-  std::set<const LocalReflection*> prepared_models;
-  for (const auto& m : c.methods)
-    if (m.reflection && prepared_models.insert(m.reflection.get()).second) m.reflection->prepare(context.preparation());
 
   // The barbule segment, exact and reduced.
   const CrossSection exact = c.generator->generate(c.instance);
@@ -451,6 +447,12 @@ void run(AppContext& context, const Options& o) {
       throw Error("compare: the reduced layer regions are invalid: " + problems.front());
     }
   }
+
+  // The preparation step (crystal tables) of every local reflection the running methods use, once,
+  // after the segment is known to be valid.
+  std::set<const LocalReflection*> prepared_models;
+  for (const auto& m : c.methods)
+    if (m.reflection && prepared_models.insert(m.reflection.get()).second) m.reflection->prepare(context.preparation());
 
   const DirectionSet directions = pattern_directions(c.pattern_samples);
   const double bin = kPi / c.pattern_samples;

@@ -190,7 +190,6 @@ void draw_pattern(const FarFieldSet& set, const std::string& png, const std::str
 void run(AppContext& context, const Options& o) {
   const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
   if (!config.structure) throw UsageError(o.config + ": no `structure:` section to simulate");
-  prepare_species(config, context.preparation());
   const auto& sim = config.simulation;
   const auto lambdas = o.lambda_nm.empty() ? sim.wavelengths_nm : parse_samples(o.lambda_nm, "--lambda-nm");
   const auto thetas = parse_samples(o.theta_deg, "--theta-deg");
@@ -216,6 +215,8 @@ void run(AppContext& context, const Options& o) {
     throw UsageError("--pattern draws the reflection pattern on (-90, 90) deg; it is not available with "
                      "--directions full (use --csv)");
   }
+
+  prepare_species(config, context.preparation());  // the explicit preparation step (crystal tables)
 
   // Geometry and instance-only preparation, once per instance (reused by every unit).
   // An invalid instance (e.g. a segment narrower than the generator's valid range, where
