@@ -14,7 +14,6 @@
 #include <sstream>
 
 #include "plumage/bench_record.hpp"
-#include "segment_config.hpp"
 #include "commands.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
@@ -61,9 +60,7 @@ double process_cpu_seconds() {
 Run run_width(AppContext& context, const BemBench& b, double width_um) {
   Run r;
   r.width_um = width_um;
-  const auto path = segment_config(b.config, width_um, "bench bem");
-  const SpeciesConfig cfg = load_species_config(path, context.registry());
-  std::filesystem::remove(path);
+  const SpeciesConfig cfg = load_species_segment(b.config, width_um, context.registry());
   const CrossSection cs = cfg.structure->generate(0);
   // Narrow segments can be outside the generator's valid range (at 0.3 um the hummingbird's
   // platelets cross each other and the outline): timing such a mesh would be meaningless.
