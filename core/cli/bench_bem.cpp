@@ -70,6 +70,7 @@ Run run_width(AppContext& context, const BemBench& b, double width_um) {
       << problems.front() << "); choose a wider segment";
     throw UsageError(m.str());
   }
+  prepare_species(cfg, context.preparation());
   const double theta = deg_to_rad(b.theta_deg);
   std::vector<double> phi_i;
   if (b.azimuths >= 20 || b.azimuths < 2) {
