@@ -4,15 +4,12 @@
 
 #include <catch2/catch.hpp>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <random>
-#include <regex>
-#include <sstream>
 
 #include "bem_test_support.hpp"
 #include "pair_integrals.hpp"
 #include "single_precision_lu.hpp"
+#include "plumage/config_document.hpp"
 #include "plumage/species_config.hpp"
 #include "plumage/structure_generator.hpp"
 #include "test_registry.hpp"
@@ -263,21 +260,13 @@ TEST_CASE("bem hmatrix: coated cylinder and keratin r = 1 um vs exact series thr
 }
 
 // Instance 0 of the hummingbird with the outline width set to 0.3 um (as `plumage bench bem`
-// builds its segments).
+// builds its segments: the outline's width and corners replaced in the config's node tree).
 static CrossSection hummingbird_segment() {
-  std::ifstream in(std::string(PLUMAGE_SOURCE_DIR) + "/configs/species/hummingbird.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string yaml = text.str();
-  const auto outline = yaml.find("\n  outline:");
-  REQUIRE(outline != std::string::npos);
-  std::string tail = yaml.substr(outline);
-  tail = std::regex_replace(tail, std::regex("(\n    width_um:)[^\n]*"), "$1 0.3", std::regex_constants::format_first_only);
-  tail = std::regex_replace(tail, std::regex("(\n    corner_um:)[^\n]*"), "$1 0.03", std::regex_constants::format_first_only);
-  const auto path = std::filesystem::temp_directory_path() / "plumage-test-bem-hmatrix-segment.yaml";
-  std::ofstream(path) << yaml.substr(0, outline) << tail;
-  const auto cfg = load_species_config(path, plumage::testing::registry());
-  std::filesystem::remove(path);
+  const auto doc = ConfigDocument::load(std::string(PLUMAGE_SOURCE_DIR) + "/configs/species/hummingbird.yaml");
+  const auto segment = ConfigDocument::derive(
+      doc.root(), {{"structure.outline.width_um", "0.3"}, {"structure.outline.corner_um", "0.03"}}, doc.directory(),
+      "hummingbird 0.3 um segment");
+  const auto cfg = load_species_config(segment, plumage::testing::registry());
   return cfg.structure->generate(0);
 }
 
