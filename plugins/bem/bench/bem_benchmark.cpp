@@ -140,7 +140,7 @@ class BemBenchmark final : public Benchmark {
   Report run(const Options& options) const override;
 
  private:
-  Run run_width(double width_um) const;
+  Run run_width(double width_um, const Options& options) const;
   std::string description() const;
 
   BenchParams params_;
@@ -192,10 +192,18 @@ std::vector<double> incident_azimuths(int count) {
   return phi_i;
 }
 
-Run BemBenchmark::run_width(double width_um) const {
+Run BemBenchmark::run_width(double width_um, const Options& options) const {
   Run r;
   r.width_um = width_um;
   const auto [species, cs] = segment(params_.config, width_um, registry_);
+  // A crystal species' reflection table, resolved or built before anything is timed.
+  PreparationOptions preparation;
+  if (options.progress) {
+    preparation.progress = [&](std::size_t done, std::size_t total, std::string_view what) {
+      if (done == 0 || done == total) options.progress("bench bem: " + std::string(what));
+    };
+  }
+  prepare_species(species, preparation);
   const double theta = deg_to_rad(params_.theta_deg);
   const std::vector<double> phi_i = incident_azimuths(params_.azimuths);
   const auto phi_o = pattern_directions(400).phi_o_rad;
@@ -237,7 +245,7 @@ std::string BemBenchmark::description() const {
   md << "; solver options `" << settings_text(params_.bem) << "` and the plug-in's defaults for the rest — "
      << "the benchmark's own defaults are `" << settings_text(solver_settings())
      << "`, where the plug-in defaults to dense LU and GMRES 1e-8; `--bem key=value` sets any solver option) on `"
-     << params_.config << "` instance 0 with the outline width replaced (corners min(1 um, W/10)), lambda = "
+     << params_.config << "` instance 0 with the outline width replaced (rounded corners min(1 um, W/10)), lambda = "
      << params_.lambda_nm << " nm, theta_i = " << params_.theta_deg << " deg, " << incident_azimuths(params_.azimuths).size()
      << " incident azimuths (cos phi_i = 0.05 b; fewer than 20 = a subset spread over them, for both solvers), "
         "both polarizations, 400 pattern directions. "
@@ -258,7 +266,7 @@ Benchmark::Report BemBenchmark::run(const Options& options) const {
   const std::string command = options.command.empty() ? "plumage bench bem" : options.command;
   std::ostringstream logs;
   for (double w : params_.widths_um) {
-    const Run r = run_width(w);
+    const Run r = run_width(w, options);
     md << "| " << machine_description() << " | `" << command << "` | " << today_iso() << " | " << w << " | "
        << (r.bem_s >= 0 ? std::to_string(r.bem_s) : std::string("-")) << " | "
        << (r.bem_s >= 0 ? std::to_string(r.bem_cpu_s) : std::string("-")) << " | " << r.approx_s << " | "
