@@ -66,7 +66,7 @@ const ParamTable<BenchParams>& bench_params() {
           .text("config", &BenchParams::config, "configs/species/hummingbird.yaml",
                 "species config whose barbule (instance 0) gives the segments")
           .numbers("width_um", &BenchParams::widths_um, "um", {10.0}, Limits::positive(),
-                   "segment widths: structure.outline.width_um replaced, corners min(1 um, W/10)")
+                   "segment widths: structure.outline.width_um replaced (rounded corners, where the outline has them: min(1 um, W/10))")
           .number("lambda_nm", &BenchParams::lambda_nm, "nm", 550.0, Limits::positive(), "wavelength")
           .number("theta_deg", &BenchParams::theta_deg, "deg", 0.0, Limits::closed(-89.0, 89.0), "theta_i")
           .integer("azimuths", &BenchParams::azimuths, "1", 20, Limits::closed(2, 20),
