@@ -10,7 +10,6 @@ const PluginRegistry& AppContext::registry() {
   if (!registry_) {
     registry_ = std::make_unique<PluginRegistry>();
     register_builtin_plugins(*registry_);
-    register_cli_ladders(*registry_);
     registry_->load_search_path(PluginRegistry::search_path(plugin_dirs));
   }
   return *registry_;

@@ -17,9 +17,6 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Accuracy ladders that live in the CLI (ladder_approximate.cpp): registered as built-ins.
-void register_cli_ladders(PluginRegistry& registry);
-
 class AppContext {
  public:
   std::vector<std::filesystem::path> plugin_dirs;  // from --plugin-path

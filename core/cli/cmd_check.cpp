@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "plumage/comparison.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/scene_config.hpp"
@@ -15,7 +16,7 @@ void check_file(AppContext& context, const std::string& file) {
   auto doc = ConfigDocument::load(file);
   ParamView root = doc.root();
   if (root.has("comparison")) {  // before `species`, which a comparison names too
-    const std::string what = check_comparison_config(file, context);
+    const std::string what = check_comparison_config(file, context.registry());
     if (!context.quiet) std::cout << file << ": ok (" << what << ")\n";
     return;
   }

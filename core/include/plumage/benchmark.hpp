@@ -6,6 +6,7 @@
 // so the command names no backend.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <string_view>
@@ -21,6 +22,7 @@ class Benchmark : public PluginObject {
   struct Options {
     std::string command;                             // as typed, for the record's "command" column
     std::function<void(std::string_view)> progress;  // status lines while it runs; may be empty
+    std::filesystem::path record;  // where the report will be recorded (empty: nowhere), for relative links
   };
   struct Report {
     std::string id;        // its section in docs/benchmarks.md, e.g. "bem"

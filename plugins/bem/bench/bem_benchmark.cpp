@@ -151,23 +151,15 @@ class BemBenchmark final : public Benchmark {
   BemOptions options_;
 };
 
-// Instance 0 of the species with the outline width replaced (structure.outline.width_um = W and,
-// where the outline has rounded corners, corner_um = min(1, W/10): narrow segments keep their
-// corners inside the outline). The values are written as std::to_string writes them, as the
-// segments of the earlier records were, so the geometry is the same to the bit.
+// Instance 0 of the species with the outline width replaced (load_species_segment: width_um = W
+// and, where the outline has rounded corners, corner_um = min(1, W/10), written as the segments of
+// the earlier records were, so the geometry is the same to the bit).
 struct BarbuleSegment {
   SpeciesConfig species;
   CrossSection section;
 };
 BarbuleSegment segment(const std::string& config, double width_um, const PluginRegistry& registry) {
-  const ConfigDocument doc = ConfigDocument::load(config);
-  std::vector<ConfigDocument::Override> widths{{"structure.outline.width_um", std::to_string(width_um)}};
-  if (doc.root().child("structure").child("outline").has("corner_um")) {
-    widths.push_back({"structure.outline.corner_um", std::to_string(std::min(1.0, 0.1 * width_um))});
-  }
-  const ConfigDocument derived = ConfigDocument::derive(doc.root(), widths, doc.directory(),
-                                                        config + " (segment of " + std::to_string(width_um) + " um)");
-  BarbuleSegment out{load_species_config(derived, registry), {}};
+  BarbuleSegment out{load_species_segment(config, width_um, registry), {}};
   out.section = out.species.structure->generate(0);
   const CrossSection& cs = out.section;
   // Narrow segments can be outside the generator's valid range (at 0.3 um the hummingbird's

@@ -9,7 +9,6 @@
 #include "bem_test_support.hpp"
 #include "pair_integrals.hpp"
 #include "single_precision_lu.hpp"
-#include "plumage/config_document.hpp"
 #include "plumage/species_config.hpp"
 #include "plumage/structure_generator.hpp"
 #include "test_registry.hpp"
@@ -259,14 +258,11 @@ TEST_CASE("bem hmatrix: coated cylinder and keratin r = 1 um vs exact series thr
   cylinders_fast_path(true);
 }
 
-// Instance 0 of the hummingbird with the outline width set to 0.3 um (as `plumage bench bem`
-// builds its segments: the outline's width and corners replaced in the config's node tree).
+// Instance 0 of the hummingbird with the outline width set to 0.3 um (load_species_segment, as
+// `plumage bench bem` builds its segments).
 static CrossSection hummingbird_segment() {
-  const auto doc = ConfigDocument::load(std::string(PLUMAGE_SOURCE_DIR) + "/configs/species/hummingbird.yaml");
-  const auto segment = ConfigDocument::derive(
-      doc.root(), {{"structure.outline.width_um", "0.3"}, {"structure.outline.corner_um", "0.03"}}, doc.directory(),
-      "hummingbird 0.3 um segment");
-  const auto cfg = load_species_config(segment, plumage::testing::registry());
+  const auto cfg = load_species_segment(std::string(PLUMAGE_SOURCE_DIR) + "/configs/species/hummingbird.yaml", 0.3,
+                                        plumage::testing::registry());
   return cfg.structure->generate(0);
 }
 
