@@ -53,6 +53,7 @@ void run_registered_benchmark(AppContext& context, std::vector<std::string> args
   Benchmark::Options options;
   options.command = command;
   options.record = record;
+  options.preparation = context.preparation();
   if (!context.quiet) options.progress = [](std::string_view line) { std::cerr << line << "\n"; };
   const Benchmark::Report report = benchmark->run(options);
   std::cout << report.markdown;
@@ -72,7 +73,6 @@ void add_bench_command(CLI::App& app, AppContext& context) {
     run_registered_benchmark(context, bench->remaining());
   });
   add_bench_fdtd_command(*bench, context);
-  add_bench_bem_command(*bench, context);
   add_bench_render_command(*bench, context);
 }
 
