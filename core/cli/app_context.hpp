@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "plumage/local_reflection.hpp"
 #include "plumage/plugin_registry.hpp"
 
 namespace plumage::cli {
@@ -21,6 +22,11 @@ class AppContext {
  public:
   std::vector<std::filesystem::path> plugin_dirs;  // from --plugin-path
   bool quiet = false;
+  std::string tables = "build";  // --tables: build | preview | never
+
+  // How the preparation step (prepare_species) may get a model's tables (--tables), with a
+  // progress line on stderr unless --quiet.
+  PreparationOptions preparation() const;
 
   // The registry, loaded on first use from the search path.
   const PluginRegistry& registry();

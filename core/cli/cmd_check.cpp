@@ -23,11 +23,16 @@ void check_file(AppContext& context, const std::string& file) {
   if (root.has("species")) {
     auto variants = species_variants(file);
     if (variants.empty()) variants.push_back("");
-    for (const auto& v : variants) load_species_config(file, context.registry(), v);
+    std::vector<std::string> pending;  // what the preparation step would do (check builds nothing)
+    for (const auto& v : variants) {
+      const std::string work = pending_preparation(load_species_config(file, context.registry(), v));
+      if (!work.empty()) pending.push_back((v.empty() ? "" : v + ": ") + work);
+    }
     if (!context.quiet) {
       std::cout << file << ": ok (species";
       if (!variants.front().empty()) std::cout << ", " << variants.size() << " variants";
       std::cout << ")\n";
+      for (const auto& work : pending) std::cout << "  to prepare: " << work << "\n";
     }
     return;
   }

@@ -55,7 +55,7 @@ void run(AppContext& context, const Options& o) {
   const fs::path out_dir = o.out.empty() ? fs::path(c.name + "-compare") : fs::path(o.out);
   const ComparisonSegment segment = make_comparison_segment(c);
   if (!context.quiet) print_header(c, segment);
-  prepare_comparison(c, PreparationOptions{});
+  prepare_comparison(c, context.preparation());
 
   Progress progress("method-wavelength solves", comparison_solve_count(c), context.quiet);
   const auto runs = run_comparison(c, segment, [&](std::size_t done, std::size_t, double remaining_s) {

@@ -34,6 +34,7 @@ void run(AppContext& context, const Options& o) {
   request.theta_deg = parse_samples(o.theta_deg, "--theta-deg");
   request.phi_deg = parse_samples(o.phi_deg, "--phi-deg");
   request.instances = o.instances;
+  request.preparation = context.preparation();
   const bool full = o.directions == "full";
   request.directions = full ? SimulationRequest::Directions::full_circle : SimulationRequest::Directions::pattern;
   if (full && !o.pattern.empty()) {

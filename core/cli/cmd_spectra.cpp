@@ -31,7 +31,7 @@ void run(AppContext& context, const Options& o) {
   for (const auto& file : o.configs) species.push_back(load_species_config(file, context.registry(), o.variant));
 
   std::vector<std::filesystem::path> skipped;
-  const auto spectra = nominal_stack_spectra(species, lambdas, thetas, PreparationOptions{}, &skipped);
+  const auto spectra = nominal_stack_spectra(species, lambdas, thetas, context.preparation(), &skipped);
   if (!context.quiet) {
     for (const auto& file : skipped) std::cerr << "note: " << file.string() << ": no nominal_stack/reflection; skipped\n";
   }

@@ -21,6 +21,5 @@ void add_merge_command(CLI::App& app, AppContext& context);         // cmd_merge
 void add_brdf_command(CLI::App& app, AppContext& context);          // cmd_brdf.cpp
 void add_render_command(CLI::App& app, AppContext& context);        // cmd_render.cpp (issue 8)
 void add_bench_fdtd_command(CLI::App& bench, AppContext& context);  // bench_fdtd.cpp
-void add_bench_bem_command(CLI::App& bench, AppContext& context);     // bench_bem.cpp
 
 }  // namespace plumage::cli

@@ -91,7 +91,7 @@ class SimulateBenchmark final : public Benchmark {
     if (!config.structure || !solver) {
       throw ConfigError(config.root.mark(), "solver", "bench simulate needs a structure and the approximate solver");
     }
-    prepare_species(config, {});
+    prepare_species(config, options.preparation);
     return {"simulate", markdown(measure(config, *solver), options)};
   }
 

@@ -22,7 +22,7 @@ std::string pol_name(int p) { return p == 2 ? "mean" : std::to_string(p + 1); }
 // is the scattered power per unit barbule length and per radian of φ_o divided by the incident
 // irradiance |E_i|²/(2η0) of the unit-amplitude plane wave (far_field.hpp: cos θ_i |𝓔|²/(2η0)
 // is the power per unit length per radian); it integrates over the full circle to the scattering
-// width C_sca (B&H; tests/oracles/cylinder_series.hpp). σ_2D = 2π dσ/dφ_o is the "echo width"
+// width C_sca (B&H; plugins/bem/reference/cylinder_series.hpp). σ_2D = 2π dσ/dφ_o is the "echo width"
 // convention, lim 2πρ |E_s|²/|E_i|² at θ_i = 0.
 void write_scattering_width_csv(const FarFieldSet& set, const std::filesystem::path& file) {
   std::ostringstream out;
