@@ -214,6 +214,59 @@ bool Integrator::sample(const Vertex& v, PathSampler& rng, V3& wl, Spectrum4& fc
   return false;
 }
 
+// One connection to each light (point, distant, area: a uniform point; environment: a uniform
+// direction) from the surface vertex vx, weighted against BSDF sampling (power heuristic, hero
+// pdf) and balanced over the wavelengths (1 / mean r); adds beta * f cos * radiance to L.
+void Integrator::next_event(const Vertex& vx, const Spectrum4& beta, const Spectrum4& d65, double rmean,
+                            PathSampler& rng, PathCounters& counters, Spectrum4& L) const {
+  const V3 p = vx.p;
+  Spectrum4 fcos, pdf;
+  auto connect = [&](V3 wl, double dist, double light_pdf, double radiance_scale, bool delta) {
+    eval(vx, wl, fcos, pdf, counters.cache);
+    if (fcos[0] == 0.0 && fcos[1] == 0.0 && fcos[2] == 0.0 && fcos[3] == 0.0) return;
+    ++counters.rays;
+    if (embree_.occluded(offset_origin(p, vx.ng, wl), wl, dist)) return;
+    // Balance over wavelengths (1/mean r), power heuristic light vs hero BSDF pdf.
+    const double w = (delta ? 1.0 : power_heuristic(light_pdf, pdf[0])) / rmean;
+    for (int j = 0; j < kWavelengths; ++j) L[j] += w * beta[j] * fcos[j] * radiance_scale * d65[j];
+  };
+  for (const PointLight& pl : scene_.point_lights) {
+    const V3 to = to_v3(pl.position_mm) - p;
+    const double dist2 = dot(to, to);
+    if (dist2 <= 0.0) continue;
+    const double dist = std::sqrt(dist2);
+    connect((1.0 / dist) * to, dist * (1.0 - 1e-6), 1.0, pl.intensity / dist2, true);
+  }
+  for (const DistantLight& dl : scene_.distant_lights) {
+    connect(normalize(to_v3(dl.toward_light)), std::numeric_limits<double>::infinity(), 1.0, dl.irradiance, true);
+  }
+  for (const AreaLight& a : scene_.area_lights) {
+    const double s = rng.next(), t = rng.next();
+    const V3 u = to_v3(a.edge_u_mm), v = to_v3(a.edge_v_mm);
+    const V3 y = to_v3(a.corner_mm) + s * u + t * v;
+    // Measured from the offset origin the shadow ray will start at (the offset shortens the
+    // path by up to eps/cos, more than the stop-short margin below).
+    const V3 to = y - offset_origin(p, vx.ng, y - p);
+    const double dist2 = dot(to, to);
+    const V3 un = cross(u, v);
+    const double area = length(un);
+    if (dist2 <= 0.0 || area <= 0.0) continue;
+    const double dist = std::sqrt(dist2);
+    const V3 wl = (1.0 / dist) * to;
+    const double cos_l = -dot((1.0 / area) * un, wl);
+    if (!a.two_sided && cos_l <= 0.0) continue;
+    if (std::abs(cos_l) < 1e-12) continue;
+    const double light_pdf = dist2 / (area * std::abs(cos_l));
+    // The shadow ray stops short of the light's own surface.
+    connect(wl, dist * (1.0 - 1e-5), light_pdf, a.radiance / light_pdf, false);
+  }
+  if (env_pdf_ > 0.0) {
+    const double u1 = rng.next(), u2 = rng.next();
+    const V3 wl = uniform_sphere(u1, u2);
+    connect(wl, std::numeric_limits<double>::infinity(), env_pdf_, scene_.environment.radiance / env_pdf_, false);
+  }
+}
+
 Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lambda, PathSampler& rng,
                             PathCounters& counters) const {
   Spectrum4 L{};
@@ -283,53 +336,7 @@ Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lam
     const double rmean = mean4(r);
 
     // Next-event estimation (not at specular vertices).
-    if (vx.kind != SceneMaterial::Kind::dielectric) {
-      Spectrum4 fcos, pdf;
-      auto connect = [&](V3 wl, double dist, double light_pdf, double radiance_scale, bool delta) {
-        eval(vx, wl, fcos, pdf, counters.cache);
-        if (fcos[0] == 0.0 && fcos[1] == 0.0 && fcos[2] == 0.0 && fcos[3] == 0.0) return;
-        ++counters.rays;
-        if (embree_.occluded(offset_origin(p, vx.ng, wl), wl, dist)) return;
-        // Balance over wavelengths (1/mean r), power heuristic light vs hero BSDF pdf.
-        const double w = (delta ? 1.0 : power_heuristic(light_pdf, pdf[0])) / rmean;
-        for (int j = 0; j < kWavelengths; ++j) L[j] += w * beta[j] * fcos[j] * radiance_scale * d65[j];
-      };
-      for (const PointLight& pl : scene_.point_lights) {
-        const V3 to = to_v3(pl.position_mm) - p;
-        const double dist2 = dot(to, to);
-        if (dist2 <= 0.0) continue;
-        const double dist = std::sqrt(dist2);
-        connect((1.0 / dist) * to, dist * (1.0 - 1e-6), 1.0, pl.intensity / dist2, true);
-      }
-      for (const DistantLight& dl : scene_.distant_lights) {
-        connect(normalize(to_v3(dl.toward_light)), std::numeric_limits<double>::infinity(), 1.0, dl.irradiance, true);
-      }
-      for (const AreaLight& a : scene_.area_lights) {
-        const double s = rng.next(), t = rng.next();
-        const V3 u = to_v3(a.edge_u_mm), v = to_v3(a.edge_v_mm);
-        const V3 y = to_v3(a.corner_mm) + s * u + t * v;
-        // Measured from the offset origin the shadow ray will start at (the offset shortens the
-        // path by up to eps/cos, more than the stop-short margin below).
-        const V3 to = y - offset_origin(p, vx.ng, y - p);
-        const double dist2 = dot(to, to);
-        const V3 un = cross(u, v);
-        const double area = length(un);
-        if (dist2 <= 0.0 || area <= 0.0) continue;
-        const double dist = std::sqrt(dist2);
-        const V3 wl = (1.0 / dist) * to;
-        const double cos_l = -dot((1.0 / area) * un, wl);
-        if (!a.two_sided && cos_l <= 0.0) continue;
-        if (std::abs(cos_l) < 1e-12) continue;
-        const double light_pdf = dist2 / (area * std::abs(cos_l));
-        // The shadow ray stops short of the light's own surface.
-        connect(wl, dist * (1.0 - 1e-5), light_pdf, a.radiance / light_pdf, false);
-      }
-      if (env_pdf_ > 0.0) {
-        const double u1 = rng.next(), u2 = rng.next();
-        const V3 wl = uniform_sphere(u1, u2);
-        connect(wl, std::numeric_limits<double>::infinity(), env_pdf_, scene_.environment.radiance / env_pdf_, false);
-      }
-    }
+    if (vx.kind != SceneMaterial::Kind::dielectric) next_event(vx, beta, d65, rmean, rng, counters, L);
 
     // Continue by BSDF sampling at the hero wavelength.
     V3 wl;

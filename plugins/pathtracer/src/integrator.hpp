@@ -61,6 +61,8 @@ class Integrator {
   void eval(const Vertex& v, V3 wl, Spectrum4& fcos, Spectrum4& pdf, IncidentCache& cache) const;
   bool sample(const Vertex& v, PathSampler& rng, V3& wl, Spectrum4& fcos, Spectrum4& pdf, bool& specular,
               bool& transmitted, IncidentCache& cache) const;
+  void next_event(const Vertex& vx, const Spectrum4& beta, const Spectrum4& d65, double rmean, PathSampler& rng,
+                  PathCounters& counters, Spectrum4& L) const;
   V3 offset_origin(V3 p, V3 ng, V3 toward) const;
 
   const Scene& scene_;
