@@ -1,7 +1,7 @@
 // `plumage render SCENE.yaml [--out DIR] [--view NAME] [--spp N] [--width W --height H]
 // [--lod auto|mean|instance] [--threads N] [--seed N] [--materials DIR] [--no-characterize]
 // [--check]`: read a scene (scene_config.hpp), build its feathers, resolve every feather material
-// (cache or preview characterisation, material_cache.hpp), render each view with the renderer
+// (the library's material store, plumage/material_store.hpp), render each view with the renderer
 // plug-in (kind "renderer", default "pathtracer") and write <out>/<scene>[-<view>].exr and .png.
 // Both files of a view appear together or not at all (temporary names, then renames).
 #include <tbb/global_control.h>
@@ -16,7 +16,8 @@
 
 #include "commands.hpp"
 #include "plumage/diagnostics.hpp"
-#include "material_cache.hpp"
+#include "plumage/feather_bsdf.hpp"
+#include "plumage/material_store.hpp"
 #include "plumage/exr.hpp"
 #include "plumage/image.hpp"
 #include "plumage/renderer.hpp"
@@ -121,11 +122,25 @@ void run(AppContext& context, const Options& o) {
     return;
   }
 
+  MaterialStoreOptions store_options;
+  store_options.directory = o.materials;
+  store_options.allow_characterize = !o.no_characterize;
+  std::unique_ptr<Progress> characterising;
+  if (!context.quiet) {
+    store_options.status = [](std::string_view line) { std::cerr << line << "\n"; };
+    store_options.progress = [&](std::size_t done, std::size_t total, std::string_view what) {
+      if (done == 0) characterising = std::make_unique<Progress>(std::string(what), total, false);  // a run starts
+      else if (characterising) characterising->advance(done);
+    };
+  }
+  const MaterialStore store(context.registry(), store_options);
   for (std::size_t k = 0; k < config.materials.size(); ++k) {
     if (!config.feather_requests[k]) continue;
-    const ResolvedFeather r =
-        resolve_feather_material(*config.feather_requests[k], context, o.materials, !o.no_characterize, context.quiet);
-    config.materials[k].feather = r.bsdf;
+    const FeatherMaterialRequest& q = *config.feather_requests[k];
+    const ResolvedMaterial r = store.resolve({q.file, q.species_config, q.variant, q.fidelity, q.where});
+    FeatherBsdfOptions bsdf;
+    bsdf.transmission_albedo = q.transmission_albedo;
+    config.materials[k].feather = std::make_shared<const FeatherBsdf>(r.material, bsdf);
   }
 
   fs::create_directories(o.out);
