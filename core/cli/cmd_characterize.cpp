@@ -2,15 +2,19 @@
 // variant into a feather material through the library's characterisation (plumage/characterize.hpp:
 // work groups, journal and resume, shards, MPI ranks under mpirun). This file parses flags, calls
 // the library and prints.
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <sstream>
 
 #include "commands.hpp"
-#include "grid_parse.hpp"
+#include "param_flags.hpp"
 #include "plumage/bench_record.hpp"
 #include "plumage/characterize.hpp"
+#include "plumage/config_document.hpp"
+#include "plumage/fidelity.hpp"
 #include "plumage/species_config.hpp"
 #include "progress.hpp"
 
@@ -19,26 +23,28 @@ namespace plumage::cli {
 namespace {
 
 struct Options {
-  std::string config, variant, fidelity = "preview", out, shard, diagnostics, lambda_nm, record;
-  int instances = 0, grid = 0, noise_functions = 0;
-  double sigma = 0.04;
+  std::string config, variant, fidelity = "preview", out, shard, diagnostics, record;
+  std::map<std::string, std::string> overrides;  // flag values by parameter name (as typed)
 };
 
-CharacterizeSettings make_settings(const SpeciesConfig& config, const Options& o) {
-  CharacterizeSettings s = preset_settings(config, o.fidelity, o.sigma);
-  if (o.instances > 0) s.instances = o.instances;
-  if (o.grid > 0) s.grid = o.grid;
-  if (o.noise_functions > 0) s.noise_functions = o.noise_functions;
-  if (!o.lambda_nm.empty()) s.lambda_nm = parse_samples(o.lambda_nm, "--lambda-nm");
-  if (s.instances < 2) throw UsageError("--instances: at least 2 (the statistics need a variance)");
-  if (s.grid < 2) throw UsageError("--grid: at least 2 incident nodes per axis");
-  if (s.lambda_nm.empty()) throw UsageError("no wavelengths");
-  for (std::size_t k = 0; k < s.lambda_nm.size(); ++k) {
-    if (!(s.lambda_nm[k] > 0) || (k && s.lambda_nm[k] <= s.lambda_nm[k - 1]))
-      throw UsageError("--lambda-nm: wavelengths must be positive and ascending");
+std::string flag_of(std::string name) {
+  std::replace(name.begin(), name.end(), '_', '-');
+  return "--" + name;
+}
+
+// The overrides as the library's parameter table reads them (its ranges and messages).
+CharacterizeOverrides read_overrides(const Options& o) {
+  std::vector<std::string> args;
+  for (const auto& [name, value] : o.overrides) {
+    if (value.empty()) continue;
+    args.push_back(flag_of(name));
+    args.push_back(value);
   }
-  s.bin_width_nm = s.lambda_nm.size() > 1 ? s.lambda_nm[1] - s.lambda_nm[0] : 6.0;
-  return s;
+  const auto& table = characterize_overrides_table();
+  const ConfigDocument doc = ConfigDocument::parse(flags_to_yaml(table.specs(), args), "command line");
+  CharacterizeOverrides overrides = table.read(doc.root());
+  doc.root().finish();
+  return overrides;
 }
 
 CharacterizeShard parse_shard(const std::string& text) {
@@ -61,7 +67,7 @@ void print_plan(const CharacterizeSettings& s, const CharacterizePlan& plan) {
 
 void run(AppContext& context, const Options& o) {
   const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
-  const CharacterizeSettings s = make_settings(config, o);
+  const CharacterizeSettings s = characterize_settings(config, o.fidelity, read_overrides(o));
   CharacterizeOptions options;
   if (!o.shard.empty()) options.shard = parse_shard(o.shard);
   options.diagnostics_dir = o.diagnostics;
@@ -100,17 +106,15 @@ void add_characterize_command(CLI::App& app, AppContext& context) {
   auto* cmd = app.add_subcommand("characterize", "Simulate and fit a species variant into a feather material (.plm)");
   cmd->add_option("config", o->config, "Species YAML file")->required();
   cmd->add_option("--variant", o->variant, "Variant (default: the file's)");
-  cmd->add_option("--fidelity", o->fidelity,
-                  "preview: 10 lambda x 10 x 10 nodes, 10 instances; production: the config's grid (50 x 20 x 20, 50 instances)")
-      ->check(CLI::IsMember({"preview", "production"}))
+  std::string presets;
+  for (const FidelityPreset& p : fidelity_presets()) presets += std::string(presets.empty() ? "" : "; ") + std::string(p.name) + ": " + std::string(p.summary);
+  cmd->add_option("--fidelity", o->fidelity, presets + " (with the species file's `simulation:` keys over it)")
+      ->check(CLI::IsMember(fidelity_names()))
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Material file to write (.plm), or the shard file with --shard")->required();
   cmd->add_option("--shard", o->shard, "Compute only shard i of N (1-based, i/N); combine with `plumage merge`");
-  cmd->add_option("--instances", o->instances, "Override the preset's instance count");
-  cmd->add_option("--grid", o->grid, "Override the preset's incident nodes per axis");
-  cmd->add_option("--lambda-nm", o->lambda_nm, "Override the preset's wavelengths (ascending list or range)");
-  cmd->add_option("--noise-functions", o->noise_functions, "Noise pool size (default 512)");
-  cmd->add_option("--sigma", o->sigma, "D_y spread of the lobes (spec 4.3)")->capture_default_str();
+  for (const ParamSpec& p : characterize_overrides_table().specs())
+    cmd->add_option(flag_of(p.name), o->overrides[p.name], p.meaning + " (default: " + p.default_value + ")");
   cmd->add_option("--diagnostics", o->diagnostics, "Folder for pattern-vs-fit pictures and the fit-quality summary");
   cmd->add_option("--record", o->record, "Record the timing in this benchmarks markdown file");
   cmd->callback([&context, o] { run(context, *o); });

@@ -2,6 +2,11 @@
 // incident grid, wavelengths, instances, direction sampling and fit settings. Two runs (or
 // shards, MPI ranks, a resumed journal) combine only if their settings agree; the settings'
 // fingerprint heads every journal and shard file (characterize_records.hpp).
+//
+// The settings of a variant at a fidelity: the species file's `simulation:` section read over
+// that preset (fidelity.hpp; the section's explicit keys override it), then the overrides of the
+// characterisation (CharacterizeOverrides, one parameter table: `plumage characterize
+// --instances/--grid/--lambda-nm/--noise-functions/--sigma`, docs/parameters.md).
 #pragma once
 
 #include <cstddef>
@@ -9,6 +14,8 @@
 #include <string_view>
 #include <vector>
 
+#include "plumage/lobe_model.hpp"
+#include "plumage/param_table.hpp"
 #include "plumage/species_config.hpp"
 
 namespace plumage {
@@ -24,8 +31,8 @@ struct CharacterizeSettings {
   double bin_width_nm = 6.0;
   int pattern_samples = 400, projected_samples = 1024;
   double jitter_deg = 2.0;
-  double sigma = 0.04;
-  int noise_functions = 512;
+  double sigma = kLobeSigma;
+  int noise_functions = 0;
 
   // Work groups (λ bin w, cos θ_i row a): g = w · grid + (a − 1).
   std::size_t group_count() const { return lambda_nm.size() * static_cast<std::size_t>(grid); }
@@ -35,9 +42,20 @@ struct CharacterizeSettings {
   static CharacterizeSettings from_fingerprint(const std::string& line);
 };
 
-// Fidelity presets. production: the config's simulation grid (50 λ, 20 × 20, 50 instances).
-// preview: 10 instances, λ = 400, 430, …, 670 nm (10 bins of 30 nm), 10 × 10 incident nodes;
-// same direction sampling and fits.
-CharacterizeSettings preset_settings(const SpeciesConfig& config, const std::string& fidelity, double sigma = 0.04);
+// What a characterisation may change of its preset (0 / empty: the preset's value).
+struct CharacterizeOverrides {
+  int instances = 0;
+  int grid = 0;                   // incident nodes per axis
+  std::vector<double> lambda_nm;  // ascending
+  int noise_functions = 0;        // the table's default
+  double sigma = 0.0;             // the table's default
+};
+const ParamTable<CharacterizeOverrides>& characterize_overrides_table();
+
+// The settings of `config`'s variant at the preset `fidelity` with `overrides` (default: the
+// table's defaults). ConfigError for counts a characterisation cannot use (fewer than 2
+// instances or incident nodes), at the species file's key when they came from there.
+CharacterizeSettings characterize_settings(const SpeciesConfig& config, std::string_view fidelity,
+                                           const CharacterizeOverrides& overrides = characterize_overrides_table().defaults());
 
 }  // namespace plumage

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "plumage/lobe_model.hpp"
+
 namespace plumage {
 
 struct MaterialNode {
@@ -57,7 +59,7 @@ struct FeatherMaterial {
   std::string config_hash;  // of the species config it was characterised from
   std::string fidelity;     // preview | production | …
   std::string warnings;     // the producing run's warnings (plumage/diagnostics.hpp), one per line; "" if none
-  double sigma = 0.04;      // D_y spread of both lobes (spec §4.3)
+  double sigma = kLobeSigma;  // D_y spread of both lobes (spec §4.3)
   double l0 = 0.0;          // correlation length at the reference unit (400 nm, normal), direction cosine
   int grid = 20;            // cos θ_i, cos φ_i nodes 0 … grid
   std::vector<double> lambda_nm;    // bin starts; bin w covers [lambda_nm[w], lambda_nm[w] + bin_width_nm)

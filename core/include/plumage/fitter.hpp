@@ -75,7 +75,7 @@ struct UnitInput {
   double lambda_nm = 0.0;
   double theta_i_rad = 0.0;  // nominal
   double phi_i_rad = 0.0;    // nominal (instances carry their jitter)
-  double sigma = 0.04;       // D_y spread used for F (spec §4.3)
+  double sigma = kLobeSigma;  // D_y spread used for F (spec §4.3)
   std::size_t pattern_count = 0;
   std::span<const FarField> instances;  // pattern directions then the on-cone projected ones
   bool want_autocorrelation = false;    // the reference unit (first λ, normal incidence), §4.8

@@ -98,7 +98,7 @@ ResolvedMaterial MaterialStore::resolve(const MaterialRequest& q) const {
                                        config.variant + " --fidelity preview --out " + out.string() + "`");
   }
   fs::create_directories(dir);
-  const CharacterizeSettings s = preset_settings(config, "preview");
+  const CharacterizeSettings s = characterize_settings(config, "preview");
   CharacterizeOptions o;
   o.preparation = options_.preparation;
   o.distribution = CharacterizeOptions::Distribution::single_process;

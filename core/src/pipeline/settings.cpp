@@ -68,32 +68,4 @@ CharacterizeSettings CharacterizeSettings::from_fingerprint(const std::string& l
   return s;
 }
 
-// Fidelity presets. production: the spec's grid (config simulation settings: 50 λ, 20 × 20,
-// 50 instances). preview: 10 instances, λ = 400, 430, …, 670 nm (10 bins of 30 nm), 10 × 10
-// incident nodes; same direction sampling and fits.
-CharacterizeSettings preset_settings(const SpeciesConfig& config, const std::string& fidelity, double sigma) {
-  CharacterizeSettings s;
-  s.label = config.species + "/" + config.variant;
-  s.config_hash = config.content_hash;
-  s.variant = config.variant;
-  s.fidelity = fidelity;
-  const auto& sim = config.simulation;
-  s.pattern_samples = sim.pattern_samples;
-  s.projected_samples = sim.projected_samples;
-  s.jitter_deg = sim.azimuth_jitter_deg;
-  s.sigma = sigma;
-  s.noise_functions = 512;
-  if (fidelity == "production") {
-    s.instances = sim.instances;
-    s.grid = sim.incident_grid;
-    s.lambda_nm = sim.wavelengths_nm;
-  } else {
-    s.instances = 10;
-    s.grid = 10;
-    for (int k = 0; k < 10; ++k) s.lambda_nm.push_back(400.0 + 30.0 * k);
-  }
-  s.bin_width_nm = s.lambda_nm.size() > 1 ? s.lambda_nm[1] - s.lambda_nm[0] : 6.0;
-  return s;
-}
-
 }  // namespace plumage
