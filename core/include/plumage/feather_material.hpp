@@ -131,4 +131,16 @@ class MaterialLookupTable {
 void write_feather_material(const std::filesystem::path& file, const FeatherMaterial& material);
 FeatherMaterial read_feather_material(const std::filesystem::path& file);
 
+// What a .plm says about itself before its tables (docs/formats.md): everything up to the node
+// tables, read without reading them (a material store compares headers only). The checksum
+// covers the whole file, so it is not verified here: read_feather_material does that.
+struct FeatherMaterialHeader {
+  std::uint32_t version = 0;
+  std::string label, config_hash, fidelity, warnings;
+  double sigma = 0.0, l0 = 0.0, bin_width_nm = 0.0;
+  int grid = 0;
+  std::vector<double> lambda_nm;
+};
+FeatherMaterialHeader read_feather_material_header(const std::filesystem::path& file);
+
 }  // namespace plumage

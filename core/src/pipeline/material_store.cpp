@@ -17,22 +17,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool matches(const FeatherMaterial& m, const std::string& label, const std::string& hash, const std::string& fidelity) {
+bool matches(const FeatherMaterialHeader& m, const std::string& label, const std::string& hash, const std::string& fidelity) {
   return m.label == label && m.config_hash == hash && m.fidelity == fidelity;
 }
 
-// A matching material in `dir`: the canonical name first, then any <species>-<variant>*.plm.
-std::optional<fs::path> find_cached(const fs::path& dir, const fs::path& canonical, const std::string& prefix,
-                                    const std::string& label, const std::string& hash, const std::string& fidelity) {
+// The matching materials in `dir` by their headers: the canonical name first, then any
+// <species>-<variant>*.plm in name order.
+std::vector<fs::path> find_cached(const fs::path& dir, const fs::path& canonical, const std::string& prefix,
+                                  const std::string& label, const std::string& hash, const std::string& fidelity) {
   auto ok = [&](const fs::path& f) {
     try {
-      return matches(read_feather_material(f), label, hash, fidelity);
+      return matches(read_feather_material_header(f), label, hash, fidelity);  // the header only
     } catch (const std::exception&) {
       return false;  // unreadable or another format: not a cache hit
     }
   };
-  if (fs::exists(canonical) && ok(canonical)) return canonical;
-  if (!fs::is_directory(dir)) return std::nullopt;
+  std::vector<fs::path> hits;
+  if (fs::exists(canonical) && ok(canonical)) hits.push_back(canonical);
+  if (!fs::is_directory(dir)) return hits;
   std::vector<fs::path> candidates;
   for (const auto& e : fs::directory_iterator(dir)) {
     const std::string name = e.path().filename().string();
@@ -40,8 +42,8 @@ std::optional<fs::path> find_cached(const fs::path& dir, const fs::path& canonic
   }
   std::sort(candidates.begin(), candidates.end());  // deterministic choice
   for (const auto& f : candidates)
-    if (f != canonical && ok(f)) return f;
-  return std::nullopt;
+    if (f != canonical && ok(f)) hits.push_back(f);
+  return hits;
 }
 
 }  // namespace
@@ -76,19 +78,24 @@ ResolvedMaterial MaterialStore::resolve(const MaterialRequest& q) const {
   auto canonical = [&](const std::string& fidelity) {
     return dir / (prefix + "-" + fidelity + "-" + config.content_hash + ".plm");
   };
-  std::optional<fs::path> hit = find_cached(dir, canonical(q.fidelity), prefix, label, config.content_hash, q.fidelity);
-  if (!hit && q.fidelity == "preview")
-    hit = find_cached(dir, canonical("production"), prefix, label, config.content_hash, "production");
-  if (!hit && q.fidelity == "production") {
+  std::vector<fs::path> hits = find_cached(dir, canonical(q.fidelity), prefix, label, config.content_hash, q.fidelity);
+  if (hits.empty() && q.fidelity == "preview")
+    hits = find_cached(dir, canonical("production"), prefix, label, config.content_hash, "production");
+  if (hits.empty() && q.fidelity == "production") {
     status("warning: no production material for " + label + " in " + dir.string() + " (make one with `plumage characterize " +
            q.species_config.string() + " --variant " + config.variant + " --fidelity production --out " +
            canonical("production").string() + "`); using preview fidelity");
-    hit = find_cached(dir, canonical("preview"), prefix, label, config.content_hash, "preview");
+    hits = find_cached(dir, canonical("preview"), prefix, label, config.content_hash, "preview");
   }
-  if (hit) {
-    status("material " + label + ": " + hit->string());
-    r.file = *hit;
-    r.material = load_material(*hit);
+  for (const fs::path& hit : hits) {
+    try {
+      r.material = load_material(hit);  // the tables and checksum, read only now
+    } catch (const Error& e) {
+      status(std::string("material ") + label + ": skipping a damaged file (" + e.what() + ")");
+      continue;
+    }
+    status("material " + label + ": " + hit.string());
+    r.file = hit;
     return r;
   }
   const fs::path out = canonical("preview");
