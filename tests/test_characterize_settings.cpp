@@ -66,7 +66,7 @@ TEST_CASE("the species loader and the characterisation read one preview", "[char
   CHECK(config.simulation.incident_grid == p.incident_grid);
   CHECK(config.simulation.pattern_samples == p.pattern_samples);
   CHECK(config.simulation.wavelengths_nm == p.wavelengths_nm.samples());
-  const CharacterizeSettings s = characterize_settings(config, "preview");
+  const CharacterizeSettings s = characterize_settings(config, registry(), "preview");
   CHECK(s.instances == config.simulation.instances);
   CHECK(s.grid == config.simulation.incident_grid);
   CHECK(s.lambda_nm == config.simulation.wavelengths_nm);
@@ -84,7 +84,7 @@ TEST_CASE("a species' simulation keys override whichever preset is asked for", "
   CHECK(config.simulation.pattern_samples == 300);
   CHECK(config.simulation.wavelengths_nm == std::vector<double>{400, 460, 520, 580, 640});
   // ... and a preview characterisation keeps the preview values the file does not set.
-  const CharacterizeSettings s = characterize_settings(config, "preview");
+  const CharacterizeSettings s = characterize_settings(config, registry(), "preview");
   CHECK(s.fidelity == "preview");
   CHECK(s.instances == 10);
   CHECK(s.grid == 10);
@@ -96,7 +96,7 @@ TEST_CASE("a species' simulation keys override whichever preset is asked for", "
 TEST_CASE("characterisation overrides: one table reads, checks and defaults them", "[characterize][fidelity]") {
   const SpeciesConfig config = load_species_config(kRockDove, registry());
   const CharacterizeSettings s = characterize_settings(
-      config, "production", overrides_from("{instances: 3, grid: 4, lambda_nm: ['400:500:50', 620], noise_functions: 8, sigma: 0.05}"));
+      config, registry(), "production", overrides_from("{instances: 3, grid: 4, lambda_nm: ['400:500:50', 620], noise_functions: 8, sigma: 0.05}"));
   CHECK(s.instances == 3);
   CHECK(s.grid == 4);
   CHECK(s.lambda_nm == std::vector<double>{400, 450, 500, 620});
@@ -113,5 +113,5 @@ TEST_CASE("characterisation overrides: one table reads, checks and defaults them
   CHECK_THROWS_AS(overrides_from("{sigma: 0}"), ConfigError);
   // A count the characterisation cannot use, from the species file, is refused at its key.
   const SpeciesConfig one = load_species_config(rockdove_with("simulation: {instances: 1}", "one.yaml"), registry());
-  CHECK_THROWS_WITH(characterize_settings(one, "preview"), Catch::Contains("simulation.instances"));
+  CHECK_THROWS_WITH(characterize_settings(one, registry(), "preview"), Catch::Contains("simulation.instances"));
 }

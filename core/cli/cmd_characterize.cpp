@@ -67,7 +67,7 @@ void print_plan(const CharacterizeSettings& s, const CharacterizePlan& plan) {
 
 void run(AppContext& context, const Options& o) {
   const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
-  const CharacterizeSettings s = characterize_settings(config, o.fidelity, read_overrides(o));
+  const CharacterizeSettings s = characterize_settings(config, context.registry(), o.fidelity, read_overrides(o));
   CharacterizeOptions options;
   if (!o.shard.empty()) options.shard = parse_shard(o.shard);
   options.diagnostics_dir = o.diagnostics;

@@ -35,11 +35,16 @@ struct GroupRecord {
 // One record as bytes: u32 'PLMR', u64 body length, body, u64 FNV-1a of the body.
 std::string serialize(const GroupRecord& r);
 
-// A journal or shard file: a two-line text header (magic, fingerprint) and appended records,
-// each with its own checksum. Reading stops at the first incomplete or corrupt record (a run
-// killed while appending) and reports the byte offset where valid data end.
+// A journal or shard file: a text header (magic, fingerprint, the species file's config hash,
+// the material inputs) and appended records, each with its own checksum. Reading stops at the
+// first incomplete or corrupt record (a run killed while appending) and reports the byte offset
+// where valid data end. A journal of format 1 (before material keys) is read with its
+// fingerprint only: it matches no current settings.
 struct JournalContents {
+  int format = 0;
   std::string fingerprint;
+  std::string config_hash;
+  std::string inputs;
   std::vector<GroupRecord> records;
   std::uintmax_t valid_bytes = 0;
 };

@@ -16,14 +16,16 @@
 
 #include "plumage/lobe_model.hpp"
 #include "plumage/param_table.hpp"
+#include "plumage/plugin_registry.hpp"
 #include "plumage/species_config.hpp"
 
 namespace plumage {
 
 struct CharacterizeSettings {
   std::string label;        // species/variant
-  std::string config_hash;
+  std::string config_hash;  // of the species file's bytes (informative: not part of the key)
   std::string variant;
+  std::string inputs;       // MaterialInputs::text() of the variant (material_key.hpp)
   std::string fidelity;
   int instances = 0;
   int grid = 0;
@@ -36,10 +38,19 @@ struct CharacterizeSettings {
 
   // Work groups (λ bin w, cos θ_i row a): g = w · grid + (a − 1).
   std::size_t group_count() const { return lambda_nm.size() * static_cast<std::size_t>(grid); }
-  std::string fingerprint() const;  // one line, exact (hex floats)
-  // The inverse of fingerprint() (a merge rebuilds the settings from shard headers). Throws Error
-  // for records of another fit revision (fitter.hpp kFitRevision).
-  static CharacterizeSettings from_fingerprint(const std::string& line);
+  // Everything a material's numbers depend on, one part per line: the label, the inputs, the fit
+  // revision (fitter.hpp kFitRevision), the fidelity and every setting (hex floats). Comments
+  // and layout of the species file do not enter; the file's content, the files it names and
+  // the models' plug-in versions do.
+  std::string key_text() const;
+  std::string key() const;  // fnv1a_hex(key_text()): the material's key, in its .plm header
+  // One line heading journals and shard files: the key and the settings (exact, hex floats).
+  std::string fingerprint() const;
+  // The inverse of fingerprint() with the journal's config hash and inputs (a merge rebuilds the
+  // settings from shard headers). Throws Error for records of another fit revision or a
+  // fingerprint whose key does not match its inputs.
+  static CharacterizeSettings from_fingerprint(const std::string& line, const std::string& config_hash,
+                                               const std::string& inputs);
 };
 
 // What a characterisation may change of its preset (0 / empty: the preset's value).
@@ -53,9 +64,10 @@ struct CharacterizeOverrides {
 const ParamTable<CharacterizeOverrides>& characterize_overrides_table();
 
 // The settings of `config`'s variant at the preset `fidelity` with `overrides` (default: the
-// table's defaults). ConfigError for counts a characterisation cannot use (fewer than 2
+// table's defaults); `registry` names the versions of the plug-ins that model it. ConfigError for counts a characterisation cannot use (fewer than 2
 // instances or incident nodes), at the species file's key when they came from there.
-CharacterizeSettings characterize_settings(const SpeciesConfig& config, std::string_view fidelity,
+CharacterizeSettings characterize_settings(const SpeciesConfig& config, const PluginRegistry& registry,
+                                           std::string_view fidelity,
                                            const CharacterizeOverrides& overrides = characterize_overrides_table().defaults());
 
 }  // namespace plumage

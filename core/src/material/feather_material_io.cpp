@@ -104,6 +104,10 @@ void read_header(Reader& r, std::uint32_t version, FeatherMaterialHeader& h) {
   h.config_hash = r.get_string("config_hash");
   h.fidelity = r.get_string("fidelity");
   if (version >= 2) h.warnings = r.get_string("warnings");
+  if (version >= 3) {
+    h.key = r.get_string("key");
+    h.key_text = r.get_string("key_text");
+  }
   h.sigma = r.get<double>();
   h.l0 = r.get<double>();
   h.bin_width_nm = r.get<double>();
@@ -127,6 +131,8 @@ void write_feather_material(const std::filesystem::path& file, const FeatherMate
   w.put_string(m.config_hash);
   w.put_string(m.fidelity);
   w.put_string(m.warnings);
+  w.put_string(m.key);
+  w.put_string(m.key_text);
   w.put<double>(m.sigma);
   w.put<double>(m.l0);
   w.put<double>(m.bin_width_nm);
@@ -183,6 +189,8 @@ FeatherMaterial read_feather_material(const std::filesystem::path& file) {
   m.config_hash = std::move(h.config_hash);
   m.fidelity = std::move(h.fidelity);
   m.warnings = std::move(h.warnings);
+  m.key = std::move(h.key);
+  m.key_text = std::move(h.key_text);
   m.sigma = h.sigma;
   m.l0 = h.l0;
   m.bin_width_nm = h.bin_width_nm;

@@ -5,6 +5,7 @@
 #include "plumage/characterize_records.hpp"
 #include "plumage/error.hpp"
 #include "plumage/fitter.hpp"
+#include "plumage/material_key.hpp"
 #include "plumage/random.hpp"
 #include "warning_attribution.hpp"
 
@@ -31,8 +32,11 @@ std::vector<const GroupRecord*> ordered(const CharacterizeSettings& s, const std
 }
 
 // The noise pool's seed: the same for every way of running, different per config and variant.
+// It derives from the variant's comment-independent identity (config_digest, material_key.hpp:
+// the merged variant's canonical text and the files it names), not from the species file's
+// bytes, so a comment edit, which keeps the material's key, keeps its noise pool too.
 std::uint64_t noise_pool_seed(const CharacterizeSettings& s) {
-  return splitmix64(name_hash(s.config_hash) ^ splitmix64(name_hash(s.variant)));
+  return splitmix64(name_hash(config_digest(s.inputs)) ^ splitmix64(name_hash(s.variant)));
 }
 
 }  // namespace
@@ -44,6 +48,8 @@ FeatherMaterial assemble_material(const CharacterizeSettings& s, const std::vect
   m.config_hash = s.config_hash;
   m.fidelity = s.fidelity;
   m.warnings = material_warnings(s, groups);
+  m.key = s.key();
+  m.key_text = s.key_text();
   m.sigma = s.sigma;
   m.grid = s.grid;
   m.lambda_nm = s.lambda_nm;

@@ -6,6 +6,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
+#include <optional>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -16,22 +18,51 @@ namespace plumage {
 
 namespace {
 
-constexpr char kJournalMagic[] = "plumage-characterize-journal 1";
+constexpr std::string_view kJournalMagic = "plumage-characterize-journal ";
+constexpr int kJournalFormat = 2;  // 2: config hash and material inputs in the header
+
+// The next '\n'-terminated line at `pos` (advanced past it), or nothing.
+std::optional<std::string_view> line_at(std::string_view data, std::size_t& pos) {
+  const auto end = data.find('\n', pos);
+  if (end == std::string_view::npos) return std::nullopt;
+  const std::string_view line = data.substr(pos, end - pos);
+  pos = end + 1;
+  return line;
+}
+
+// Format 2: "config_hash <hex>", "inputs <bytes>" and that many bytes after the fingerprint.
+bool parse_header_v2(std::string_view data, std::size_t& pos, JournalContents& j) {
+  const auto hash = line_at(data, pos);
+  const auto inputs = line_at(data, pos);
+  if (!hash || !inputs || hash->rfind("config_hash ", 0) != 0 || inputs->rfind("inputs ", 0) != 0) return false;
+  j.config_hash = std::string(hash->substr(12));
+  const std::string count(inputs->substr(7));
+  char* end = nullptr;
+  const unsigned long long n = std::strtoull(count.c_str(), &end, 10);
+  if (count.empty() || *end != '\0' || n > data.size() - pos) return false;
+  j.inputs = std::string(data.substr(pos, n));
+  pos += n;
+  return true;
+}
 
 }  // namespace
 
 std::string journal_header(const CharacterizeSettings& s) {
-  return std::string(kJournalMagic) + "\n" + s.fingerprint() + "\n";
+  return std::string(kJournalMagic) + std::to_string(kJournalFormat) + "\n" + s.fingerprint() + "\nconfig_hash " +
+         s.config_hash + "\ninputs " + std::to_string(s.inputs.size()) + "\n" + s.inputs;
 }
 
 JournalContents parse_journal(std::string_view data, const std::string& name) {
   JournalContents j;
-  const auto l1 = data.find('\n');
-  const auto l2 = l1 == std::string::npos ? std::string::npos : data.find('\n', l1 + 1);
-  if (l2 == std::string::npos || data.compare(0, l1, kJournalMagic) != 0)
+  std::size_t pos = 0;
+  const auto magic = line_at(data, pos);
+  const auto fingerprint = line_at(data, pos);
+  if (magic && magic->rfind(kJournalMagic, 0) == 0)
+    j.format = std::atoi(std::string(magic->substr(kJournalMagic.size())).c_str());
+  if (!fingerprint || (j.format != 1 && j.format != kJournalFormat) ||
+      (j.format == kJournalFormat && !parse_header_v2(data, pos, j)))
     throw Error(name + ": not a plumage characterisation journal or shard file (bad header)");
-  j.fingerprint = std::string(data.substr(l1 + 1, l2 - l1 - 1));
-  std::size_t pos = l2 + 1;
+  j.fingerprint = std::string(*fingerprint);
   j.valid_bytes = pos;
   while (pos < data.size()) {
     auto r = parse_record(data, pos);

@@ -7,6 +7,7 @@
 #include "plumage/characterize_settings.hpp"
 #include "plumage/config_sections.hpp"
 #include "plumage/lobe_model.hpp"
+#include "plumage/material_key.hpp"
 #include "plumage/param_table.hpp"
 
 namespace plumage {
@@ -88,13 +89,14 @@ const ParamTable<CharacterizeOverrides>& characterize_overrides_table() {
   return table;
 }
 
-CharacterizeSettings characterize_settings(const SpeciesConfig& config, std::string_view fidelity,
-                                           const CharacterizeOverrides& o) {
+CharacterizeSettings characterize_settings(const SpeciesConfig& config, const PluginRegistry& registry,
+                                           std::string_view fidelity, const CharacterizeOverrides& o) {
   const SimulationSettings sim = simulation_settings(config, fidelity);
   CharacterizeSettings s;
   s.label = config.species + "/" + config.variant;
   s.config_hash = config.content_hash;
   s.variant = config.variant;
+  s.inputs = material_inputs(config, registry).text();
   s.fidelity = sim.fidelity;
   s.pattern_samples = sim.pattern_samples;
   s.projected_samples = sim.projected_samples;

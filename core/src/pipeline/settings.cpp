@@ -1,11 +1,12 @@
-// Characterisation settings: presets and the fingerprint that heads journals and shard files
-// (characterize_settings.hpp).
+// Characterisation settings: the material key and the fingerprint that heads journals and shard
+// files (characterize_settings.hpp).
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <sstream>
 
 #include "plumage/characterize_settings.hpp"
+#include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
 #include "plumage/fitter.hpp"
 
@@ -19,19 +20,35 @@ std::string hexfloat(double v) {
   return b;
 }
 
-}  // namespace
-
-std::string CharacterizeSettings::fingerprint() const {
+// The numbers of the settings, exact: the same text in the key and the fingerprint.
+std::string numbers(const CharacterizeSettings& s) {
   std::ostringstream o;
-  o << "fit_revision=" << kFitRevision << " label=" << label << " config_hash=" << config_hash << " variant=" << variant << " fidelity=" << fidelity
-    << " instances=" << instances << " grid=" << grid << " lambda_nm=";
-  for (std::size_t k = 0; k < lambda_nm.size(); ++k) o << (k ? "," : "") << hexfloat(lambda_nm[k]);
-  o << " bin_width_nm=" << hexfloat(bin_width_nm) << " pattern=" << pattern_samples << " projected=" << projected_samples
-    << " jitter_deg=" << hexfloat(jitter_deg) << " sigma=" << hexfloat(sigma) << " noise_functions=" << noise_functions;
+  o << "instances=" << s.instances << " grid=" << s.grid << " lambda_nm=";
+  for (std::size_t k = 0; k < s.lambda_nm.size(); ++k) o << (k ? "," : "") << hexfloat(s.lambda_nm[k]);
+  o << " bin_width_nm=" << hexfloat(s.bin_width_nm) << " pattern=" << s.pattern_samples
+    << " projected=" << s.projected_samples << " jitter_deg=" << hexfloat(s.jitter_deg) << " sigma=" << hexfloat(s.sigma)
+    << " noise_functions=" << s.noise_functions;
   return o.str();
 }
 
-CharacterizeSettings CharacterizeSettings::from_fingerprint(const std::string& line) {
+}  // namespace
+
+std::string CharacterizeSettings::key_text() const {
+  std::ostringstream o;
+  o << "plumage material key 1\nlabel " << label << "\n" << inputs << "fit_revision " << kFitRevision << "\nfidelity "
+    << fidelity << "\nsettings " << numbers(*this) << "\n";
+  return o.str();
+}
+
+std::string CharacterizeSettings::key() const { return fnv1a_hex(key_text()); }
+
+std::string CharacterizeSettings::fingerprint() const {
+  return "fit_revision=" + std::to_string(kFitRevision) + " label=" + label + " key=" + key() + " variant=" + variant +
+         " fidelity=" + fidelity + " " + numbers(*this);
+}
+
+CharacterizeSettings CharacterizeSettings::from_fingerprint(const std::string& line, const std::string& config_hash,
+                                                            const std::string& inputs) {
   std::map<std::string, std::string> kv;
   std::istringstream in(line);
   std::string token;
@@ -51,8 +68,9 @@ CharacterizeSettings CharacterizeSettings::from_fingerprint(const std::string& l
     throw Error("characterisation records of fit revision " + field("fit_revision") + ", this build writes " +
                 std::to_string(kFitRevision) + ": recompute them");
   s.label = field("label");
-  s.config_hash = field("config_hash");
+  s.config_hash = config_hash;
   s.variant = field("variant");
+  s.inputs = inputs;
   s.fidelity = field("fidelity");
   s.instances = std::stoi(field("instances"));
   s.grid = std::stoi(field("grid"));
@@ -64,6 +82,7 @@ CharacterizeSettings CharacterizeSettings::from_fingerprint(const std::string& l
   s.jitter_deg = num("jitter_deg");
   s.sigma = num("sigma");
   s.noise_functions = std::stoi(field("noise_functions"));
+  if (s.key() != field("key")) throw Error("characterisation header: its key does not match its inputs and settings");
   if (s.fingerprint() != line) throw Error("characterisation header does not round-trip: " + line);
   return s;
 }
