@@ -71,6 +71,7 @@ void run(AppContext& context, const Options& o) {
   CharacterizeOptions options;
   if (!o.shard.empty()) options.shard = parse_shard(o.shard);
   options.diagnostics_dir = o.diagnostics;
+  options.preparation = context.preparation();  // --tables, with progress unless quiet
   std::unique_ptr<Progress> progress;
   options.progress = [&](std::size_t done, std::size_t total, std::string_view what) {
     if (done == 0) progress = std::make_unique<Progress>(std::string(what), total, context.quiet);  // a run starts

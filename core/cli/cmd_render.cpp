@@ -125,6 +125,7 @@ void run(AppContext& context, const Options& o) {
   MaterialStoreOptions store_options;
   store_options.directory = o.materials;
   store_options.allow_characterize = !o.no_characterize;
+  store_options.preparation = context.preparation();  // --tables, for a material characterised here
   std::unique_ptr<Progress> characterising;
   if (!context.quiet) {
     store_options.status = [](std::string_view line) { std::cerr << line << "\n"; };

@@ -91,7 +91,9 @@ CharacterizeResult run(const SpeciesConfig& config, const CharacterizeSettings& 
   const std::clock_t cpu0 = std::clock();
   std::vector<FitDiagnostic> diagnostics = fit_diagnostic_units(s);
   GroupCallbacks callbacks{result.root ? o.progress : nullptr, o.cancelled};
-  compute_groups(config, s, o.preparation, part.todo, part.plan.journal, part.valid_bytes, callbacks,
+  PreparationOptions preparation = o.preparation;
+  if (!result.root) preparation.progress = nullptr;  // rank 0 reports the preparation step
+  compute_groups(config, s, preparation, part.todo, part.plan.journal, part.valid_bytes, callbacks,
                  o.diagnostics_dir.empty() ? nullptr : &diagnostics);
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   result.cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
