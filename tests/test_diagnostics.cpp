@@ -104,7 +104,7 @@ TEST_CASE("diagnostics: the kept message does not depend on which thread raised 
   }
 }
 
-TEST_CASE("feather material: warnings are stored (version 2), version 1 files still read", "[diagnostics][material]") {
+TEST_CASE("feather material: warnings are stored (version >= 2), version 1 files still read", "[diagnostics][material]") {
   FeatherMaterial m = small_material();
   m.warnings = "fit.near_zero_energy: lobe energy 1e-12 at 400 nm\nfit.poor_fit: rel. L2 0.8\n";
   const auto file = temp_file("warnings.plm");
@@ -113,16 +113,19 @@ TEST_CASE("feather material: warnings are stored (version 2), version 1 files st
   CHECK(r.warnings == m.warnings);
   CHECK(r.nodes[3].*kMaterialFields[7] == m.nodes[3].*kMaterialFields[7]);
 
-  // A version 1 file is the version 2 layout without the `warnings` string: build one from a
-  // version 2 file with empty warnings (drop its 4-byte length, set version 1, new checksum).
+  // A version 1 file is the version 3 layout without the `warnings`, `key` and `key_text`
+  // strings: build one from a version 3 file with all three empty (drop their 4-byte lengths,
+  // set version 1, new checksum).
   m.warnings.clear();
   write_feather_material(file, m);
   std::string bytes = read_bytes(file);
   const std::size_t after_fidelity = 8 + 4 + (4 + m.label.size()) + (4 + m.config_hash.size()) + (4 + m.fidelity.size());
-  std::uint32_t length = 99;
-  std::memcpy(&length, bytes.data() + after_fidelity, 4);
-  REQUIRE(length == 0);
-  bytes.erase(after_fidelity, 4);
+  for (int k = 0; k < 3; ++k) {
+    std::uint32_t length = 99;
+    std::memcpy(&length, bytes.data() + after_fidelity + 4 * k, 4);
+    REQUIRE(length == 0);
+  }
+  bytes.erase(after_fidelity, 12);
   const std::uint32_t v1 = 1;
   std::memcpy(bytes.data() + 8, &v1, 4);
   bytes.resize(bytes.size() - 8);

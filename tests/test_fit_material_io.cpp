@@ -81,3 +81,39 @@ TEST_CASE("feather material file: corruption and bad input name the file", "[mat
   CHECK_THROWS_AS(write_feather_material(target, bad), Error);
   CHECK_FALSE(std::filesystem::exists(target));
 }
+
+TEST_CASE("feather material header: read alone, without the tables", "[material][fit-io]") {
+  FeatherMaterial m = sample_material();
+  m.warnings = "fit.two_lobes: raised while computing 1 of 3 work groups\n";
+  m.key_text = "plumage material key 1\nlabel rockdove/forest\nspecies 0123456789abcdef\n";
+  m.key = "fedcba9876543210";
+  const auto file = temp_file("header.plm");
+  write_feather_material(file, m);
+  const FeatherMaterialHeader h = read_feather_material_header(file);
+  CHECK(h.version == FeatherMaterial::kFormatVersion);
+  CHECK(h.label == m.label);
+  CHECK(h.config_hash == m.config_hash);
+  CHECK(h.fidelity == m.fidelity);
+  CHECK(h.warnings == m.warnings);
+  CHECK(h.key == m.key);
+  CHECK(h.key_text == m.key_text);
+  CHECK(read_feather_material(file).key_text == m.key_text);
+  CHECK(h.sigma == m.sigma);
+  CHECK(h.l0 == m.l0);
+  CHECK(h.bin_width_nm == m.bin_width_nm);
+  CHECK(h.grid == m.grid);
+  CHECK(h.lambda_nm == m.lambda_nm);
+  // The header needs nothing after it: a file cut right after the wavelength list (its tables
+  // and checksum gone) still gives its header, while the full read refuses it.
+  const std::size_t header_bytes = 8 + 4 + (4 + m.label.size()) + (4 + m.config_hash.size()) + (4 + m.fidelity.size()) +
+                                   (4 + m.warnings.size()) + (4 + m.key.size()) + (4 + m.key_text.size()) + 3 * 8 + 4 + 4 +
+                                   8 * m.lambda_nm.size();
+  std::filesystem::resize_file(file, header_bytes);
+  CHECK(read_feather_material_header(file).lambda_nm == m.lambda_nm);
+  CHECK_THROWS_WITH(read_feather_material(file), Catch::Contains("header.plm"));
+  std::filesystem::resize_file(file, header_bytes - 1);
+  CHECK_THROWS_WITH(read_feather_material_header(file), Catch::Contains("header.plm") && Catch::Contains("truncated"));
+  CHECK_THROWS_WITH(read_feather_material_header(temp_file("missing.plm")), Catch::Contains("missing.plm"));
+  std::ofstream(temp_file("text.plm")) << "not a material at all, but long enough to hold a header";
+  CHECK_THROWS_WITH(read_feather_material_header(temp_file("text.plm")), Catch::Contains("bad magic"));
+}

@@ -12,7 +12,7 @@
 #include <optional>
 
 #include "commands.hpp"
-#include "material_cache.hpp"
+#include "plumage/material_store.hpp"
 #include "plumage/render_job.hpp"
 #include "progress.hpp"
 
@@ -47,10 +47,31 @@ RenderJobOptions job_options(const Options& o) {
   return j;
 }
 
-// Feather materials: the material cache (material_cache.hpp) finds or characterises them.
-FeatherResolver material_resolver(AppContext& context, const Options& o) {
-  return [&context, &o](const FeatherMaterialRequest& request) {
-    return resolve_feather_material(request, context, o.materials, !o.no_characterize, context.quiet).bsdf;
+// Feather materials: the library's material store (plumage/material_store.hpp) finds, validates
+// or characterises them; a production request served at preview is a warning in the image.
+struct MaterialResolver {
+  std::unique_ptr<Progress> characterising;
+  std::unique_ptr<MaterialStore> store;
+};
+
+FeatherResolver material_resolver(AppContext& context, const Options& o, MaterialResolver& state) {
+  MaterialStoreOptions store_options;
+  store_options.directory = o.materials;
+  store_options.allow_characterize = !o.no_characterize;
+  store_options.preparation = context.preparation();  // --tables, for a material characterised here
+  if (!context.quiet) {
+    store_options.status = [](std::string_view line) { std::cerr << line << "\n"; };
+    store_options.progress = [&state](std::size_t done, std::size_t total, std::string_view what) {
+      if (done == 0) state.characterising = std::make_unique<Progress>(std::string(what), total, false);  // a run starts
+      else if (state.characterising) state.characterising->advance(done);
+    };
+  }
+  state.store = std::make_unique<MaterialStore>(context.registry(), store_options);
+  return [&state](const FeatherMaterialRequest& q) {
+    const ResolvedMaterial r = state.store->resolve({q.file, q.species_config, q.variant, q.fidelity, q.where});
+    FeatherBsdfOptions bsdf;
+    bsdf.transmission_albedo = q.transmission_albedo;
+    return std::make_shared<const FeatherBsdf>(r.material, bsdf);
   };
 }
 
@@ -78,7 +99,8 @@ void run(AppContext& context, const Options& o) {
               << st.feathers << " feathers, " << st.barbule_ids << " barbule ids\n";
     return;
   }
-  job.resolve_materials(material_resolver(context, o));
+  MaterialResolver materials;
+  job.resolve_materials(material_resolver(context, o, materials));
   for (std::size_t k = 0; k < job.views().size(); ++k) {
     const SceneView& view = *job.views()[k];
     if (!context.quiet) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "pipeline/simulation_section.hpp"
 #include "yaml_state.hpp"
 
 namespace plumage {
@@ -56,36 +57,6 @@ std::shared_ptr<const ScatteringSolver> create_solver(const ParamView& root, con
   }
 }
 
-SimulationSettings parse_simulation(const ParamView& root) {
-  SimulationSettings s;
-  std::optional<ParamView> node = root.child_if("simulation");
-  static constexpr std::string_view kFidelities[] = {"preview", "production", "reference"};
-  if (node) s.fidelity = node->choice_or("fidelity", kFidelities, "production");
-  // Presets: preview is for looking, production is the paper's grid, reference doubles it.
-  double step = 6.0;
-  if (s.fidelity == "preview") {
-    s.instances = 10, step = 30.0, s.incident_grid = 5, s.pattern_samples = 200, s.projected_samples = 512;
-  } else if (s.fidelity == "reference") {
-    s.instances = 100, step = 3.0, s.pattern_samples = 800, s.projected_samples = 2048;
-  }
-  double from = 400.0, to = 694.0;
-  if (node) {
-    s.instances = static_cast<int>(node->integer_or("instances", s.instances, Limits::closed(1, 100000)));
-    if (auto w = node->child_if("wavelengths_nm")) {
-      from = w->number_or("from", from, Limits::closed(100, 5000));
-      to = w->number_or("to", to, Limits::closed(100, 5000));
-      step = w->number_or("step", step, Limits::positive());
-      if (to < from) w->fail("to", "the wavelength range is inverted (to < from)");
-    }
-    s.incident_grid = static_cast<int>(node->integer_or("incident_grid", s.incident_grid, Limits::closed(1, 1000)));
-    s.pattern_samples = static_cast<int>(node->integer_or("pattern_samples", s.pattern_samples, Limits::closed(2, 100000)));
-    s.projected_samples = static_cast<int>(node->integer_or("projected_samples", s.projected_samples, Limits::closed(2, 100000)));
-    s.azimuth_jitter_deg = node->number_or("azimuth_jitter_deg", s.azimuth_jitter_deg, Limits::closed(0, 45));
-  }
-  for (double l = from; l <= to + 1e-9; l += step) s.wavelengths_nm.push_back(l);
-  return s;
-}
-
 }  // namespace
 
 std::vector<std::string> species_variants(const std::filesystem::path& file) {
@@ -113,6 +84,7 @@ SpeciesConfig load_species_config(const ConfigDocument& doc, const PluginRegistr
 
   SpeciesConfig config;
   config.file = file;
+  config.directory = doc.directory();
   config.content_hash = doc.content_hash();
   config.variants = variant_names(raw);
   const std::string default_variant = raw.text_or("variant", "");
@@ -156,7 +128,7 @@ SpeciesConfig load_species_config(const ConfigDocument& doc, const PluginRegistr
     config.structure = std::move(generator);
   }
   config.solver = create_solver(root, registry, context, config.solver_type);
-  config.simulation = parse_simulation(root);
+  config.simulation = read_simulation_section(root, "");
   root.finish();
   return config;
 }

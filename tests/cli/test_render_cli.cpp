@@ -15,6 +15,9 @@
 #include "plumage/exr.hpp"
 #include "plumage/feather_material.hpp"
 #include "plumage/image.hpp"
+#include "plumage/material_store.hpp"
+#include "plumage/species_config.hpp"
+#include "test_registry.hpp"
 
 namespace fs = std::filesystem;
 using plumage::cli_test::Result;
@@ -33,8 +36,8 @@ fs::path write_scene(const std::string& name, const std::string& text) {
 }
 
 // A green-reflecting synthetic material (as tests/cli/test_brdf_cli.cpp), optionally labelled as
-// a species material (label, config hash, fidelity) and written to `file`.
-fs::path synthetic_material(const std::string& label = "synthetic/green", const std::string& hash = "",
+// a species material (label, material key, fidelity) and written to `file`.
+fs::path synthetic_material(const std::string& label = "synthetic/green", const std::string& key = "",
                             const std::string& fidelity = "test", fs::path file = {}) {
   MaterialRecipe r;
   r.bins = 10;
@@ -44,7 +47,7 @@ fs::path synthetic_material(const std::string& label = "synthetic/green", const 
   r.albedo = [](int w, double, double) { const double d = (400.0 + 30.0 * w - 520.0) / 60.0; return 0.1 + 0.6 * std::exp(-d * d); };
   FeatherMaterial m = make_material(r, [](const Lobe& l, double t) { return lobe_integral(l, t, 12, 3); });
   m.label = label;
-  m.config_hash = hash;
+  m.key = key;
   m.fidelity = fidelity;
   m.bin_width_nm = 30.0;
   for (int w = 0; w < r.bins; ++w) m.lambda_nm[static_cast<std::size_t>(w)] = 400.0 + 30.0 * w;
@@ -220,9 +223,11 @@ TEST_CASE("render: bad input exits 2 with file:line:column and writes nothing", 
   CHECK_FALSE(fs::exists(out));
 }
 
-TEST_CASE("render: a species material is found in the cache by label, config hash and fidelity", "[cli][render]") {
+TEST_CASE("render: a species material is found in the cache by its key", "[cli][render]") {
   const fs::path species = fs::path(PLUMAGE_SOURCE_DIR) / "configs" / "species" / "starling.yaml";
-  const std::string hash = ConfigDocument::load(species).content_hash();
+  // The key the store looks for (plumage/material_store.hpp): the variant's inputs, fidelity, settings.
+  const SpeciesConfig config = load_species_config(species, registry(), "green");
+  const std::string key = MaterialStore(registry(), {}).settings(config, "preview").key();
   const fs::path cache = plumage::cli_test::fresh_scratch_path(kSuite, "cache");
   fs::create_directories(cache);
   std::string text = kPlane;
@@ -231,15 +236,16 @@ TEST_CASE("render: a species material is found in the cache by label, config has
   text.replace(text.find("materials: {"), 12, "materials: {s: {type: feather, species: " + species.string() + ", variant: green}, ");
   const fs::path scene = write_scene("cached.yaml", text);
   const fs::path out = plumage::cli_test::fresh_scratch_path(kSuite, "cached");
-  // Another config hash or another fidelity is not a hit (and characterising is switched off).
+  // A material of another key (other inputs or settings) is stale, not a hit (and characterising
+  // is switched off).
   synthetic_material("starling/green", "0000000000000000", "preview", cache / "starling-green-old.plm");
-  synthetic_material("starling/green", hash, "test", cache / "starling-green-test.plm");
   Result r = run("render " + scene.string() + " --no-characterize --spp 1 --materials " + cache.string() + " --out " + out.string());
   INFO(r.output);
   CHECK(r.status == 2);
+  CHECK(r.output.find("starling-green-old.plm is stale") != std::string::npos);
   CHECK(r.output.find("no cached material for starling/green (preview)") != std::string::npos);
   // The matching one, under any name starting with <species>-<variant>.
-  const fs::path good = synthetic_material("starling/green", hash, "preview", cache / "starling-green-mine.plm");
+  const fs::path good = synthetic_material("starling/green", key, "preview", cache / "starling-green-mine.plm");
   r = run("render " + scene.string() + " --no-characterize --spp 1 --materials " + cache.string() + " --out " + out.string());
   CHECK(r.status == 0);
   CHECK(r.output.find("material starling/green: " + good.string()) != std::string::npos);

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "plumage/lobe_model.hpp"
+
 namespace plumage {
 
 struct MaterialNode {
@@ -50,14 +52,19 @@ struct NoisePool {
 };
 
 struct FeatherMaterial {
-  // Version 2 added `warnings`; version 1 files are still read (with no warnings).
-  static constexpr std::uint32_t kFormatVersion = 2;
+  // Version 3 added `key` and `key_text`, version 2 `warnings`; versions 1 and 2 are still read
+  // (without them).
+  static constexpr std::uint32_t kFormatVersion = 3;
 
   std::string label;        // "species/variant"
-  std::string config_hash;  // of the species config it was characterised from
+  std::string config_hash;  // of the species config's bytes it was characterised from (informative)
   std::string fidelity;     // preview | production | …
   std::string warnings;     // the producing run's warnings (plumage/diagnostics.hpp), one per line; "" if none
-  double sigma = 0.04;      // D_y spread of both lobes (spec §4.3)
+  // What its numbers depend on (CharacterizeSettings::key_text, characterize_settings.hpp) and
+  // its digest, the key a material store looks it up by; "" for materials made another way.
+  std::string key;
+  std::string key_text;
+  double sigma = kLobeSigma;  // D_y spread of both lobes (spec §4.3)
   double l0 = 0.0;          // correlation length at the reference unit (400 nm, normal), direction cosine
   int grid = 20;            // cos θ_i, cos φ_i nodes 0 … grid
   std::vector<double> lambda_nm;    // bin starts; bin w covers [lambda_nm[w], lambda_nm[w] + bin_width_nm)
@@ -128,5 +135,17 @@ class MaterialLookupTable {
 // read() verifies both and names the file in every error.
 void write_feather_material(const std::filesystem::path& file, const FeatherMaterial& material);
 FeatherMaterial read_feather_material(const std::filesystem::path& file);
+
+// What a .plm says about itself before its tables (docs/formats.md): everything up to the node
+// tables, read without reading them (a material store compares headers only). The checksum
+// covers the whole file, so it is not verified here: read_feather_material does that.
+struct FeatherMaterialHeader {
+  std::uint32_t version = 0;
+  std::string label, config_hash, fidelity, warnings, key, key_text;
+  double sigma = 0.0, l0 = 0.0, bin_width_nm = 0.0;
+  int grid = 0;
+  std::vector<double> lambda_nm;
+};
+FeatherMaterialHeader read_feather_material_header(const std::filesystem::path& file);
 
 }  // namespace plumage

@@ -19,6 +19,13 @@
 
 namespace plumage {
 
+// Revision of what fitting and assembly make of the same far fields. Bumped whenever this code
+// changes the numbers a work record or a material holds, so that journals, shard files and
+// cached materials of older code are never mixed with new ones (characterize_settings.hpp).
+// 3: records carry their warning codes; fits normalise the pattern's scale and give a zero lobe
+// for near-zero energy (issue 9).
+inline constexpr int kFitRevision = 3;
+
 // ---- lobe on the specular cone (spec §4.2) ----------------------------------------------------
 
 // The fitted shape of a pattern: G_k = D(h; m) G1(ω_i'; m) G1(ω_o,k; m) on the cone (spec §4.2).
@@ -68,7 +75,7 @@ struct UnitInput {
   double lambda_nm = 0.0;
   double theta_i_rad = 0.0;  // nominal
   double phi_i_rad = 0.0;    // nominal (instances carry their jitter)
-  double sigma = 0.04;       // D_y spread used for F (spec §4.3)
+  double sigma = kLobeSigma;  // D_y spread used for F (spec §4.3)
   std::size_t pattern_count = 0;
   std::span<const FarField> instances;  // pattern directions then the on-cone projected ones
   bool want_autocorrelation = false;    // the reference unit (first λ, normal incidence), §4.8

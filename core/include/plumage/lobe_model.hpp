@@ -19,10 +19,14 @@
 
 namespace plumage {
 
+// σ, the spread of D_y out of the specular cone, of every fitted lobe (spec §4.3): declared once
+// here; a characterisation may set another (its `sigma` parameter), stored in the material.
+inline constexpr double kLobeSigma = 0.04;
+
 struct Lobe {
   double m = 0.1;          // GGX roughness, [0.001, 1]
   double phi_c_rad = 0.0;  // effective incident azimuth φ_c
-  double sigma = 0.04;     // spread of D_y across the cone
+  double sigma = kLobeSigma;  // spread of D_y across the cone
   double scale = 1.0;      // F
 };
 

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "plumage/config_document.hpp"
+#include "plumage/fidelity.hpp"
 #include "plumage/layer_profile.hpp"
 #include "plumage/local_reflection.hpp"
 #include "plumage/plugin_registry.hpp"
@@ -28,24 +29,28 @@
 
 namespace plumage {
 
-// How much to simulate (DESIGN §7). `fidelity` picks a preset; explicit keys override it.
+// How much to simulate (DESIGN §7): a species file's `simulation:` section. Its `fidelity` picks a
+// preset (fidelity.hpp: preview | production | reference, default production) and its other keys
+// override the preset's values; parameter table: docs/parameters.md, "species: simulation".
 //   simulation: {fidelity: production, instances: 50, wavelengths_nm: {from: 400, to: 694, step: 6},
 //                incident_grid: 20, pattern_samples: 400, projected_samples: 1024,
 //                azimuth_jitter_deg: 2}
 struct SimulationSettings {
-  std::string fidelity = "production";
-  int instances = 50;
-  std::vector<double> wavelengths_nm;  // production: 400, 406, …, 694
-  int incident_grid = 20;              // (cos θ_i, cos φ_i) = (a, b)/grid, a, b = 1..grid
-  int pattern_samples = 400;           // bin centres in φ_o on (−90°, 90°)
-  int projected_samples = 1024;        // uniform in ω_o,x, for noise statistics
+  std::string fidelity;
+  int instances = 0;
+  SampleRange wavelength_range;        // the section's wavelengths_nm: {from, to, step}
+  std::vector<double> wavelengths_nm;  // its samples
+  int incident_grid = 0;               // (cos θ_i, cos φ_i) = (a, b)/grid, a, b = 1..grid
+  int pattern_samples = 0;             // bin centres in φ_o on (−90°, 90°)
+  int projected_samples = 0;           // uniform in ω_o,x, for noise statistics
   // Instance n of N sees φ_i + δ_n with δ spread linearly over ±jitter (reference behaviour:
   // smears the per-instance specular direction).
-  double azimuth_jitter_deg = 2.0;
+  double azimuth_jitter_deg = 0.0;
 };
 
 struct SpeciesConfig {
   std::filesystem::path file;
+  std::filesystem::path directory;  // where the names of files it references resolve
   std::string content_hash;  // of the whole file; cache keys add the variant name
   std::string species;
   std::string common_name;
@@ -57,7 +62,7 @@ struct SpeciesConfig {
   std::shared_ptr<const StructureGenerator> structure;
   std::shared_ptr<const ScatteringSolver> solver;  // `solver:` (default: approximate)
   std::string solver_type;
-  SimulationSettings simulation;
+  SimulationSettings simulation;  // the `simulation:` section over its own fidelity preset
 };
 
 // Loads, merges the chosen variant (default: the file's `variant`) and validates every section,
@@ -68,6 +73,10 @@ SpeciesConfig load_species_config(const std::filesystem::path& file, const Plugi
 // outline width replaced); relative file names resolve against doc.directory().
 SpeciesConfig load_species_config(const ConfigDocument& doc, const PluginRegistry& registry,
                                   const std::string& variant = "");
+
+// The `simulation:` section of a loaded species read over the preset `fidelity` (its explicit
+// keys override that preset; "" takes the section's own `fidelity`, as config.simulation does).
+SimulationSettings simulation_settings(const SpeciesConfig& config, std::string_view fidelity);
 
 // A barbule segment of a chosen width (benchmarks and accuracy ladders): the species file with
 // structure.outline.width_um = width_um and, where the file sets it, structure.outline.corner_um =

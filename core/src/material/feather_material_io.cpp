@@ -1,13 +1,17 @@
 // FeatherMaterial file (.plm): binary, little-endian, versioned, FNV-1a checksummed, written
-// atomically. Layout: docs/formats.md, section "Feather material (.plm)".
+// atomically. Layout: docs/formats.md, section "Feather material (.plm)". The header (every
+// field before the node tables) is read on its own by read_feather_material_header, without
+// the tables: a material store compares headers only.
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
 #include <string_view>
 
-#include "plumage/checksum.hpp"
 #include "plumage/atomic_file.hpp"
+#include "plumage/checksum.hpp"
 #include "plumage/error.hpp"
 #include "plumage/feather_material.hpp"
 
@@ -17,6 +21,7 @@ namespace {
 
 constexpr char kMagic[8] = {'P', 'L', 'U', 'M', 'P', 'L', 'M', '\0'};
 constexpr std::size_t kMaxString = 1 << 16;
+constexpr std::size_t kHeaderChunk = 1 << 16;
 
 struct Writer {
   std::string bytes;
@@ -30,10 +35,13 @@ struct Writer {
   }
 };
 
+// Reads from bytes in memory, or (header only) from a stream as far as needed.
 class Reader {
  public:
   Reader(const std::string& data, std::size_t end, const std::filesystem::path& file)
       : data_(data), end_(end), file_(file) {}
+  Reader(std::istream& in, const std::filesystem::path& file) : own_(), data_(own_), end_(0), file_(file), in_(&in) {}
+
   template <class T>
   T get() {
     need(sizeof(T));
@@ -50,16 +58,25 @@ class Reader {
     pos_ += n;
     return s;
   }
-  void need(std::size_t n) const {
+  void need(std::size_t n) {
+    while (in_ && pos_ + n > end_ && *in_) {
+      const std::size_t want = std::max(kHeaderChunk, pos_ + n - end_);
+      own_.resize(end_ + want);
+      in_->read(own_.data() + end_, static_cast<std::streamsize>(want));
+      end_ += static_cast<std::size_t>(in_->gcount());
+      own_.resize(end_);
+    }
     if (pos_ + n > end_) fail("truncated feather material (at byte " + std::to_string(pos_) + ")");
   }
   [[noreturn]] void fail(const std::string& what) const { throw Error(file_.string() + ": " + what); }
   std::size_t position() const { return pos_; }
 
  private:
+  std::string own_;  // the stream's bytes read so far
   const std::string& data_;
   std::size_t end_;
   std::filesystem::path file_;
+  std::istream* in_ = nullptr;
   std::size_t pos_ = 0;
 };
 
@@ -74,6 +91,35 @@ void check_material(const FeatherMaterial& m) {
     throw Error("feather material: noise pool size is not a multiple of its sample count");
 }
 
+void check_version(std::uint32_t version, const std::filesystem::path& file) {
+  if (version < 1 || version > FeatherMaterial::kFormatVersion)
+    throw Error(file.string() + ": feather material version " + std::to_string(version) + ", this build reads 1 to " +
+                std::to_string(FeatherMaterial::kFormatVersion));
+}
+
+// Every field before the node tables, after magic and version.
+void read_header(Reader& r, std::uint32_t version, FeatherMaterialHeader& h) {
+  h.version = version;
+  h.label = r.get_string("label");
+  h.config_hash = r.get_string("config_hash");
+  h.fidelity = r.get_string("fidelity");
+  if (version >= 2) h.warnings = r.get_string("warnings");
+  if (version >= 3) {
+    h.key = r.get_string("key");
+    h.key_text = r.get_string("key_text");
+  }
+  h.sigma = r.get<double>();
+  h.l0 = r.get<double>();
+  h.bin_width_nm = r.get<double>();
+  h.grid = r.get<std::int32_t>();
+  if (h.grid < 1 || h.grid > 1000) r.fail("grid: " + std::to_string(h.grid) + " outside [1, 1000]");
+  const auto bins = r.get<std::uint32_t>();
+  if (bins < 1 || bins > 100000) r.fail("wavelength bins: " + std::to_string(bins) + " outside [1, 100000]");
+  r.need(bins * sizeof(double));
+  h.lambda_nm.resize(bins);
+  for (double& l : h.lambda_nm) l = r.get<double>();
+}
+
 }  // namespace
 
 void write_feather_material(const std::filesystem::path& file, const FeatherMaterial& m) {
@@ -85,6 +131,8 @@ void write_feather_material(const std::filesystem::path& file, const FeatherMate
   w.put_string(m.config_hash);
   w.put_string(m.fidelity);
   w.put_string(m.warnings);
+  w.put_string(m.key);
+  w.put_string(m.key_text);
   w.put<double>(m.sigma);
   w.put<double>(m.l0);
   w.put<double>(m.bin_width_nm);
@@ -103,6 +151,20 @@ void write_feather_material(const std::filesystem::path& file, const FeatherMate
                         /*binary=*/true);
 }
 
+FeatherMaterialHeader read_feather_material_header(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error(file.string() + ": cannot open feather material");
+  Reader r(in, file);
+  r.need(sizeof kMagic + 4);
+  const auto magic = r.get<std::array<char, sizeof kMagic>>();
+  if (std::memcmp(magic.data(), kMagic, sizeof kMagic) != 0) r.fail("not a plumage feather material (bad magic)");
+  const auto version = r.get<std::uint32_t>();
+  check_version(version, file);
+  FeatherMaterialHeader h;
+  read_header(r, version, h);
+  return h;
+}
+
 FeatherMaterial read_feather_material(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error(file.string() + ": cannot open feather material");
@@ -111,9 +173,7 @@ FeatherMaterial read_feather_material(const std::filesystem::path& file) {
     throw Error(file.string() + ": not a plumage feather material (bad magic)");
   std::uint32_t version;
   std::memcpy(&version, data.data() + sizeof kMagic, 4);
-  if (version != FeatherMaterial::kFormatVersion && version != 1)
-    throw Error(file.string() + ": feather material version " + std::to_string(version) + ", this build reads " +
-                std::to_string(FeatherMaterial::kFormatVersion));
+  check_version(version, file);
   std::uint64_t stored;
   std::memcpy(&stored, data.data() + data.size() - 8, 8);
   if (stored != fnv1a(std::string_view(data).substr(0, data.size() - 8)))
@@ -122,26 +182,26 @@ FeatherMaterial read_feather_material(const std::filesystem::path& file) {
   Reader r(data, data.size() - 8, file);
   (void)r.get<std::uint64_t>();  // magic
   (void)r.get<std::uint32_t>();  // version
+  FeatherMaterialHeader h;
+  read_header(r, version, h);
   FeatherMaterial m;
-  m.label = r.get_string("label");
-  m.config_hash = r.get_string("config_hash");
-  m.fidelity = r.get_string("fidelity");
-  if (version >= 2) m.warnings = r.get_string("warnings");
-  m.sigma = r.get<double>();
-  m.l0 = r.get<double>();
-  m.bin_width_nm = r.get<double>();
-  m.grid = r.get<std::int32_t>();
-  if (m.grid < 1 || m.grid > 1000) r.fail("grid: " + std::to_string(m.grid) + " outside [1, 1000]");
-  const auto bins = r.get<std::uint32_t>();
-  if (bins < 1 || bins > 100000) r.fail("wavelength bins: " + std::to_string(bins) + " outside [1, 100000]");
-  m.lambda_nm.resize(bins);
-  for (double& l : m.lambda_nm) l = r.get<double>();
+  m.label = std::move(h.label);
+  m.config_hash = std::move(h.config_hash);
+  m.fidelity = std::move(h.fidelity);
+  m.warnings = std::move(h.warnings);
+  m.key = std::move(h.key);
+  m.key_text = std::move(h.key_text);
+  m.sigma = h.sigma;
+  m.l0 = h.l0;
+  m.bin_width_nm = h.bin_width_nm;
+  m.grid = h.grid;
+  m.lambda_nm = std::move(h.lambda_nm);
   const auto params = r.get<std::uint32_t>();
   if (params != kMaterialParameters)
     r.fail("parameters per node: " + std::to_string(params) + ", expected " + std::to_string(kMaterialParameters));
   const std::size_t per_bin = static_cast<std::size_t>(m.grid + 1) * static_cast<std::size_t>(m.grid + 1);
-  r.need(per_bin * bins * kMaterialParameters * sizeof(double));
-  m.nodes.resize(per_bin * bins);
+  r.need(per_bin * m.lambda_nm.size() * kMaterialParameters * sizeof(double));
+  m.nodes.resize(per_bin * m.lambda_nm.size());
   for (MaterialNode& n : m.nodes)
     for (auto field : kMaterialFields) n.*field = r.get<double>();
   m.noise.samples = r.get<std::int32_t>();

@@ -1,19 +1,20 @@
-// Work records of `plumage characterize`: one record per (λ bin w, cos θ_i row a) group holding
-// the fitted node of every cos φ_i column b = 1 … G (and, for the reference group, the noise
+// Work records of a characterisation: one record per (λ bin w, cos θ_i row a) group holding the
+// fitted node of every cos φ_i column b = 1 … G (and, for the reference group, the noise
 // autocorrelation). Records are what journals, shard files and MPI messages carry; a material is
 // assembled from a complete set of them, so every way of running gives the same bytes.
+// Journal and shard layout: docs/formats.md, "Characterisation journals and shards".
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
-#include <map>
 #include <string>
-#include <utility>
+#include <string_view>
 #include <vector>
 
+#include "plumage/characterize_settings.hpp"
 #include "plumage/feather_material.hpp"
 
-namespace plumage::cli {
+namespace plumage {
 
 struct UnitRecord {
   MaterialNode node;  // correlation = absolute l (not yet divided by l0)
@@ -31,38 +32,25 @@ struct GroupRecord {
   std::vector<std::string> warnings;
 };
 
-// What a characterisation depends on; two runs (or shards) combine only if these agree.
-struct CharacterizeSettings {
-  std::string label;        // species/variant
-  std::string config_hash;
-  std::string variant;
-  std::string fidelity;
-  int instances = 0;
-  int grid = 0;
-  std::vector<double> lambda_nm;
-  double bin_width_nm = 6.0;
-  int pattern_samples = 400, projected_samples = 1024;
-  double jitter_deg = 2.0;
-  double sigma = 0.04;
-  int noise_functions = 512;
-
-  std::size_t group_count() const { return lambda_nm.size() * static_cast<std::size_t>(grid); }
-  std::string fingerprint() const;  // one line, exact (hex floats)
-  // The inverse of fingerprint() (plumage merge rebuilds the settings from shard headers).
-  static CharacterizeSettings from_fingerprint(const std::string& line);
-};
-
+// One record as bytes: u32 'PLMR', u64 body length, body, u64 FNV-1a of the body.
 std::string serialize(const GroupRecord& r);
 
-// A journal or shard file: a two-line text header (magic, fingerprint) and appended records,
-// each with its own checksum. Reading stops at the first incomplete or corrupt record (a run
-// killed while appending) and reports the byte offset where valid data end.
+// A journal or shard file: a text header (magic, fingerprint, the species file's config hash,
+// the material inputs) and appended records, each with its own checksum. Reading stops at the
+// first incomplete or corrupt record (a run killed while appending) and reports the byte offset
+// where valid data end. A journal of format 1 (before material keys) is read with its
+// fingerprint only: it matches no current settings.
 struct JournalContents {
+  int format = 0;
   std::string fingerprint;
+  std::string config_hash;
+  std::string inputs;
   std::vector<GroupRecord> records;
   std::uintmax_t valid_bytes = 0;
 };
 JournalContents read_journal(const std::filesystem::path& file);
+// The same from bytes in memory; `name` stands for the file in messages.
+JournalContents parse_journal(std::string_view data, const std::string& name);
 std::string journal_header(const CharacterizeSettings& s);
 
 // Appends records, flushed and fsync'ed after each so a kill loses at most the record in flight.
@@ -81,9 +69,10 @@ class JournalWriter {
 };
 
 // The material from a complete set of records (one per group; identical duplicates allowed).
+// Throws Error naming the missing or conflicting groups.
 FeatherMaterial assemble_material(const CharacterizeSettings& s, const std::vector<GroupRecord>& records);
 
 // Relative L2 fit-error summary over all units of the records (docs/validation.md "Fitting").
 std::string fit_quality_summary(const CharacterizeSettings& s, const std::vector<GroupRecord>& records);
 
-}  // namespace plumage::cli
+}  // namespace plumage
