@@ -285,7 +285,6 @@ void add_bench_command(CLI::App& app, AppContext& context) {
     run_registered_benchmark(context, bench->remaining());
   });
   add_bench_geometry_command(*bench, context);
-  add_bench_fdtd_command(*bench, context);
   add_bench_bem_command(*bench, context);
   add_bench_render_command(*bench, context);
   add_bench_ladder_command(*bench, context);

@@ -25,7 +25,6 @@ void add_brdf_command(CLI::App& app, AppContext& context);          // cmd_brdf.
 void add_render_command(CLI::App& app, AppContext& context);        // cmd_render.cpp (issue 8)
 // `bench geometry` (bench_geometry.cpp), added under the `bench` subcommand.
 void add_bench_geometry_command(CLI::App& bench, AppContext& context);
-void add_bench_fdtd_command(CLI::App& bench, AppContext& context);  // bench_fdtd.cpp
 void add_bench_bem_command(CLI::App& bench, AppContext& context);     // bench_bem.cpp
 void add_bench_render_command(CLI::App& bench, AppContext& context);  // bench_render.cpp (issue 8)
 void add_bench_ladder_command(CLI::App& bench, AppContext& context);  // bench_ladder.cpp (issue 9)
