@@ -119,7 +119,7 @@ TEST_CASE("a conditional parameter is not read when it does not apply", "[param-
 
 TEST_CASE("a parameter table documents each row once", "[param-table]") {
   const auto specs = table().specs();
-  REQUIRE(specs.size() == 12);  // 11 entries + the nested row inner.width_um
+  REQUIRE(specs.size() == 11);  // 10 entries + the nested row inner.width_um
   CHECK(specs[0].name == "ppw");
   CHECK(specs[0].default_value == "30");
   CHECK(specs[0].range == "> 0");
@@ -127,9 +127,11 @@ TEST_CASE("a parameter table documents each row once", "[param-table]") {
   CHECK(specs[4].range == "film | rods");
   CHECK(specs[5].default_value == "required");
   CHECK(specs[5].condition == "model: film");
-  CHECK(specs[7].default_value == "[400, 700]");
-  CHECK(specs[10].default_value == "by fidelity");
-  CHECK(specs[11].name == "inner.width_um");
+  CHECK(specs[6].default_value == "[400, 700]");
+  CHECK(specs[7].default_value == "[0.9, 0.95]");
+  CHECK(specs[8].default_value == "by fidelity");
+  CHECK(specs[9].type == "map");
+  CHECK(specs[10].name == "inner.width_um");
   CHECK(format_param_number(1e-8) == "1e-08");
   CHECK(format_param_number(0.25) == "0.25");
 }
@@ -152,6 +154,14 @@ TEST_CASE("a derived document replaces values as nodes and keeps file positions"
   const ConfigDocument c =
       ConfigDocument::derive(doc.root(), {{"solver.type", "bem", true}}, "/tmp", "derived");
   CHECK(c.root().child("solver").text("type") == "bem");
+  // A replaced value that is then refused names the override's source.
+  const ConfigDocument bad = ConfigDocument::derive(
+      doc.root(), {{"structure.outline.width_um", "-2", false, "command line --width-um"}}, "/tmp", "derived");
+  CHECK_THAT(error_of("x: 1\n",
+                      [&](const ParamView&) {
+                        bad.root().child("structure").child("outline").number("width_um", Limits::positive());
+                      }),
+             Catch::StartsWith("command line --width-um: structure.outline.width_um: value -2 is out of range"));
 }
 
 TEST_CASE("canonical text ignores comments, layout and key order, not values", "[config]") {

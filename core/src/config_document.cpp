@@ -88,22 +88,68 @@ void canonical(const YAML::Node& n, std::string& out) {
     }
     out += "]";
   } else {
-    std::vector<std::pair<std::string, YAML::Node>> entries;
-    for (auto it = n.begin(); it != n.end(); ++it) entries.emplace_back(it->first.Scalar(), it->second);
-    std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    // Sort an index, not the nodes: assigning a YAML::Node writes through to the document.
+    std::vector<std::pair<std::string, std::size_t>> keys;
+    std::vector<YAML::Node> values;
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      keys.emplace_back(it->first.Scalar(), values.size());
+      values.push_back(it->second);
+    }
+    std::sort(keys.begin(), keys.end());
     out += "{";
-    for (const auto& [key, value] : entries) {
+    for (const auto& [key, k] : keys) {
       out += std::to_string(key.size()) + ":" + key + "=";
-      canonical(value, out);
+      canonical(values[k], out);
       out += ",";
     }
     out += "}";
   }
 }
 
-// Copies a node tree keeping every node's mark (YAML::Clone keeps them too, but shares no state
-// with the original, which is what a derived document needs).
-YAML::Node copy_tree(const YAML::Node& n) { return YAML::Clone(n); }
+std::vector<std::string> split_path(const std::string& path) {
+  std::vector<std::string> parts;
+  for (std::size_t start = 0;;) {
+    const std::size_t dot = path.find('.', start);
+    parts.push_back(path.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  return parts;
+}
+
+// `base` with the value at parts[k..] replaced: new map nodes along the path, every other key and
+// value node reused (force_insert keeps them, with their file positions).
+YAML::Node replaced(const YAML::Node& base, const std::vector<std::string>& parts, std::size_t k,
+                    const YAML::Node& value, const ConfigDocument::Override& o, const ParamView& where) {
+  const std::string walked = [&] {
+    std::string w;
+    for (std::size_t i = 0; i <= k; ++i) w += (i ? "." : "") + parts[i];
+    return w;
+  }();
+  if (base && !base.IsNull() && !base.IsMap()) {
+    throw ConfigError(where.mark(), where.path_of(walked), "not a map: cannot set '" + o.path + "' (" + o.source + ")");
+  }
+  YAML::Node out(YAML::NodeType::Map);
+  bool found = false;
+  if (base && base.IsMap()) {
+    for (auto it = base.begin(); it != base.end(); ++it) {
+      if (it->first.Scalar() != parts[k]) {
+        out.force_insert(it->first, it->second);
+        continue;
+      }
+      found = true;
+      out.force_insert(it->first, k + 1 == parts.size() ? value : replaced(it->second, parts, k + 1, value, o, where));
+    }
+  }
+  if (!found) {
+    if (!o.create) {
+      throw ConfigError(where.mark(), where.path_of(walked),
+                        "no parameter '" + walked + "' to set to " + o.yaml + " (" + o.source + ")");
+    }
+    out.force_insert(YAML::Node(parts[k]), k + 1 == parts.size() ? value : replaced(YAML::Node(), parts, k + 1, value, o, where));
+  }
+  return out;
+}
 
 }  // namespace
 
@@ -115,40 +161,17 @@ std::string canonical_text(const ParamView& view) {
 
 ConfigDocument ConfigDocument::derive(const ParamView& base, const std::vector<Override>& overrides,
                                       const std::filesystem::path& directory, const std::string& name) {
-  YAML::Node tree = copy_tree(base.state()->node);
+  YAML::Node tree = base.state()->node;
+  auto sources = std::make_shared<std::vector<std::pair<YAML::Node, std::string>>>();
   for (const Override& o : overrides) {
     YAML::Node value;
     try {
       value = YAML::Load(o.yaml);
     } catch (const YAML::ParserException& e) {
-      throw ConfigError({name, 0, 0}, o.path, "not a YAML value: '" + o.yaml + "' (" + e.msg + ")");
+      throw ConfigError({o.source, 0, 0}, base.path_of(o.path), "not a YAML value: '" + o.yaml + "' (" + e.msg + ")");
     }
-    // Walk to the parent map of the last path component.
-    std::vector<std::string> parts;
-    for (std::size_t start = 0;;) {
-      const std::size_t dot = o.path.find('.', start);
-      parts.push_back(o.path.substr(start, dot == std::string::npos ? std::string::npos : dot - start));
-      if (dot == std::string::npos) break;
-      start = dot + 1;
-    }
-    YAML::Node parent = tree;
-    std::string walked;
-    for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
-      walked += (walked.empty() ? "" : ".") + parts[k];
-      YAML::Node next = parent[parts[k]];
-      if (!next || next.IsNull()) {
-        if (!o.create) throw ConfigError(base.mark(), base.path_of(walked), "no such section to set '" + o.path + "' in");
-        parent[parts[k]] = YAML::Node(YAML::NodeType::Map);
-        next = parent[parts[k]];
-      }
-      if (!next.IsMap()) throw ConfigError(base.mark(), base.path_of(walked), "not a map: cannot set '" + o.path + "'");
-      parent.reset(next);
-    }
-    if (!parent.IsMap()) throw ConfigError(base.mark(), base.path(), "not a map: cannot set '" + o.path + "'");
-    if (!o.create && !parent[parts.back()]) {
-      throw ConfigError(base.mark(), base.path_of(o.path), "no parameter '" + o.path + "' to set");
-    }
-    parent[parts.back()] = value;
+    tree.reset(replaced(tree, split_path(o.path), 0, value, o, base));  // reset: `=` would write into base
+    sources->emplace_back(value, o.source);
   }
   ConfigDocument doc;
   doc.path_ = name;
@@ -157,6 +180,7 @@ ConfigDocument ConfigDocument::derive(const ParamView& base, const std::vector<O
   canonical(tree, text);
   doc.hash_ = fnv1a_hex(text);
   doc.root_ = make_root_view(tree, base.file());
+  doc.root_.state()->overrides = std::move(sources);
   return doc;
 }
 

@@ -27,6 +27,15 @@ SourceMark mark_from(const YAML::Mark& m, const std::string& file) {
   return {file, m.line + 1, m.column + 1};
 }
 
+// The position of `node` in messages: its override's source when a derived document replaced it.
+SourceMark mark_of_node(const ParamView::State& s, const YAML::Node& node) {
+  if (s.overrides) {
+    for (const auto& [value, source] : *s.overrides)
+      if (value.is(node)) return {source, 0, 0};
+  }
+  return mark_from(node.Mark(), s.file);
+}
+
 std::string join_path(const std::string& base, std::string_view key) {
   if (base.empty()) return std::string(key);
   return base + "." + std::string(key);
@@ -67,13 +76,14 @@ ParamView::ParamView() : state_(std::make_shared<State>()) {
 
 ParamView::ParamView(std::shared_ptr<State> state) : state_(std::move(state)) {}
 
-SourceMark ParamView::mark() const { return mark_from(state_->node.Mark(), state_->file); }
+SourceMark ParamView::mark() const { return mark_of_node(*state_, state_->node); }
 
 SourceMark ParamView::mark_of(std::string_view key) const {
   if (state_->node.IsMap()) {
     for (auto it = state_->node.begin(); it != state_->node.end(); ++it) {
       if (it->first.Scalar() == key) {
-        auto m = mark_from(it->second.Mark(), state_->file);
+        auto m = mark_of_node(*state_, it->second);
+        if (m.file != state_->file) return m;  // an override
         if (m.line == 0) m = mark_from(it->first.Mark(), state_->file);
         return m;
       }
@@ -246,6 +256,7 @@ std::shared_ptr<ParamView::State> ParamView::State::make_child(const YAML::Node&
   child->node = node;
   child->file = file;
   child->path = std::move(child_path);
+  child->overrides = overrides;
   children.push_back(child);
   return child;
 }

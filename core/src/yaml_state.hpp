@@ -22,6 +22,9 @@ struct ParamView::State {
   std::map<std::string, std::shared_ptr<State>> child_by_key;  // one state per key
   std::vector<std::shared_ptr<State>> item_states;             // sequence items
   bool items_made = false;
+  // Values replaced in a derived document (ConfigDocument::derive) and where they came from, shared
+  // by every view of that document: messages about them name their source, not a file position.
+  std::shared_ptr<std::vector<std::pair<YAML::Node, std::string>>> overrides;
 
   std::shared_ptr<State> make_child(const YAML::Node& child_node, std::string child_path);
 };

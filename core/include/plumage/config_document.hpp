@@ -17,15 +17,16 @@ class ConfigDocument {
   // Parses YAML text held in memory; `name` stands for the file name in messages.
   static ConfigDocument parse(const std::string& text, const std::string& name);
   // A document made from `base` (a view into another document) with values replaced: each
-  // override is (dotted path below `base`, YAML text of the new value). The tree is copied as
-  // nodes, not as text, so every untouched value keeps its file, line and column in messages.
-  // A path must name an existing key unless `create` is set (then missing maps are made).
-  // Throws ConfigError at `where` (a CLI flag, a config field) naming a path that does not exist.
-  // The derived document resolves relative file names against `directory`.
+  // override is (dotted path below `base`, YAML text of the new value). Built from yaml-cpp nodes,
+  // not text: untouched values are the original nodes, so messages about them keep their file,
+  // line and column; messages about a replaced value name the override's `source` instead.
+  // A path must name an existing key unless `create` is set (then missing maps are made); a
+  // missing one is a ConfigError naming the path. Relative file names resolve against `directory`.
   struct Override {
-    std::string path;       // "outline.width_um"
-    std::string yaml;       // "10", "{a: 1}", "[1, 2]"
-    bool create = false;    // add the key (and any missing maps on the way) if absent
+    std::string path;                  // "outline.width_um"
+    std::string yaml;                  // "10", "{a: 1}", "[1, 2]"
+    bool create = false;               // add the key (and any missing maps on the way) if absent
+    std::string source = "override";   // where the value came from, e.g. "command line --width-um"
   };
   static ConfigDocument derive(const ParamView& base, const std::vector<Override>& overrides,
                                const std::filesystem::path& directory, const std::string& name);
