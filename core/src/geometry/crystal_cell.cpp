@@ -32,7 +32,9 @@ const ParamTable<CrystalCell>& crystal_table() {
       ParamTable<CrystalCell>{}
           .text("name", &CrystalCell::name, required, "name of the cell (the table's crystal name)")
           .choice("lattice", &CrystalCell::lattice,
-                  {{"hexagonal", Lattice::hexagonal}, {"rectangular", Lattice::rectangular}}, required,
+                  std::vector<std::pair<std::string_view, Lattice>>{{"hexagonal", Lattice::hexagonal},
+                                                                    {"rectangular", Lattice::rectangular}},
+                  required,
                   "hexagonal (odd rows shifted by a_x/2) | rectangular (rows above each other)")
           .number("a_x_nm", &CrystalCell::a_x_nm, "nm", required, Limits::positive(), "period along the surface")
           .number("a_z_nm", &CrystalCell::a_z_nm, "nm", required, Limits::positive(), "row spacing in depth")

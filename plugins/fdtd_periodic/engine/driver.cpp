@@ -19,15 +19,6 @@ double courant_limit(double h, double ky, double min_eps_inf) {
     return lim * std::sqrt(std::max(1.0, min_eps_inf));
 }
 
-void incident_basis(double st, double ct, double sp, double cp, Vec3c E[2], Vec3c H[2]) {
-    E[0] = {cplx(-st * sp), cplx(ct), cplx(st * cp)};
-    H[0] = {cplx(-cp), cplx(0.0), cplx(-sp)};
-    E[1] = {cplx(cp), cplx(0.0), cplx(sp)};
-    H[1] = {cplx(-st * sp), cplx(ct), cplx(st * cp)};
-}
-
-Vec3c to_local_frame(const Vec3c& v) { return {v[0], -v[2], v[1]}; }
-
 namespace detail {
 
 double thread_cpu_seconds() {

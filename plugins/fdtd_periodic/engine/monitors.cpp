@@ -8,7 +8,19 @@
 
 #include "sim.hpp"
 
-namespace plumage::fdtd::detail {
+namespace plumage::fdtd {
+
+// The incident polarisation basis (NOTES.md §1); here, beside the extraction that projects on it.
+void incident_basis(double st, double ct, double sp, double cp, Vec3c E[2], Vec3c H[2]) {
+    E[0] = {cplx(-st * sp), cplx(ct), cplx(st * cp)};
+    H[0] = {cplx(-cp), cplx(0.0), cplx(-sp)};
+    E[1] = {cplx(cp), cplx(0.0), cplx(sp)};
+    H[1] = {cplx(-st * sp), cplx(ct), cplx(st * cp)};
+}
+
+Vec3c to_local_frame(const Vec3c& v) { return {v[0], -v[2], v[1]}; }
+
+namespace detail {
 
 void Sim::init_monitors(int km, const std::vector<int>& orders) {
     mon.km = km;
@@ -177,4 +189,5 @@ void extract_frequency(const std::vector<Sim>& sims, const Setup& S, const Cell&
     }
 }
 
-}  // namespace plumage::fdtd::detail
+}  // namespace detail
+}  // namespace plumage::fdtd
