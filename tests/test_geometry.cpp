@@ -191,3 +191,26 @@ TEST_CASE("crystal cells: the 14 shipped cells parse; bad cells fail at their li
   CHECK_THROWS_WITH(load_crystal_cell(write_temp("mat.yaml", mat)),
                     Catch::Contains("mat.yaml:9:") && Catch::Contains("melanin"));
 }
+
+TEST_CASE("crystal cells: a map under another key is a table builder's section, kept unread", "[geometry][crystal]") {
+  const std::string base =
+      "crystal:\n  name: x\n  lattice: hexagonal\n  a_x_nm: 180\n  a_z_nm: 145\n"
+      "  rod_diameter_nm: 162\n  rows: 4\n  cortex_nm: 50\n";
+  // Core does not read the section: its keys (even unknown ones) are the builder's to check.
+  const CrystalCell c = load_crystal_cell(write_temp("section.yaml", base + "  some_builder: {step_nm: 7, typo: 1}\n"));
+  REQUIRE(c.builder_sections.count("some_builder") == 1);
+  const ParamView& section = c.builder_sections.at("some_builder");
+  CHECK(section.number("step_nm") == 7.0);
+  CHECK(section.mark().line == 9);
+  CHECK(section.path() == "crystal.some_builder");
+  CHECK_THROWS_WITH(section.finish(), Catch::Contains("section.yaml:9:") && Catch::Contains("typo"));
+  // The shipped cells keep their builder settings in the builder's section.
+  const CrystalCell peacock = load_crystal_cell(fs::path(PLUMAGE_SOURCE_DIR) / "configs/crystals/peacock-cyan.yaml");
+  REQUIRE(peacock.builder_sections.count("fdtd_periodic") == 1);
+  CHECK(peacock.builder_sections.at("fdtd_periodic").keys().size() == 4);
+  // Not a section: a scalar under an unknown key, or a map one typo away from a cell field.
+  CHECK_THROWS_WITH(load_crystal_cell(write_temp("scalar.yaml", base + "  step_nm: 7\n")),
+                    Catch::Contains("unknown key 'step_nm'"));
+  CHECK_THROWS_WITH(load_crystal_cell(write_temp("near.yaml", base + "  material: {rod: air}\n")),
+                    Catch::Contains("near.yaml:9:") && Catch::Contains("did you mean 'materials'"));
+}

@@ -65,14 +65,9 @@ void run_registered_benchmark(AppContext& context, std::vector<std::string> args
 
 void add_bench_command(CLI::App& app, AppContext& context) {
   auto* bench = app.add_subcommand("bench", "Measure the speed of a backend: plumage bench <name> [--help]");
-  bench->require_subcommand(0, 1);
   bench->allow_extras();
   bench->prefix_command();
-  bench->callback([&context, bench] {
-    if (!bench->get_subcommands().empty()) return;
-    run_registered_benchmark(context, bench->remaining());
-  });
-  add_bench_fdtd_command(*bench, context);
+  bench->callback([&context, bench] { run_registered_benchmark(context, bench->remaining()); });
 }
 
 }  // namespace plumage::cli

@@ -20,6 +20,5 @@ void add_characterize_command(CLI::App& app, AppContext& context);  // cmd_chara
 void add_merge_command(CLI::App& app, AppContext& context);         // cmd_merge.cpp
 void add_brdf_command(CLI::App& app, AppContext& context);          // cmd_brdf.cpp
 void add_render_command(CLI::App& app, AppContext& context);        // cmd_render.cpp (issue 8)
-void add_bench_fdtd_command(CLI::App& bench, AppContext& context);  // bench_fdtd.cpp
 
 }  // namespace plumage::cli

@@ -13,12 +13,19 @@
 //     cortex_nm: 123.5            # keratin from the surface to the top of the first row
 //     materials: {host: keratin, rod: melanin, core: air, channel: air}   # optional
 //     expected_peak_nm: 545       # optional, informational
+//     fdtd_periodic: {grazing_anchors: 3}   # optional: settings of one table builder
 //
 // Depth z > 0 into the barbule; row j has rod centres at depth cortex + D/2 + j·a_z. Hexagonal:
 // odd rows shifted by a_x/2. Rectangular: channels at (a_x/2, z_j + a_z/2).
+//
+// A map under a key that is not a cell field is the section of the table builder of that name
+// (`fdtd_periodic:`): core keeps it unread in CrystalCell::builder_sections, the builder reads and
+// checks it with its own parameter table (TableBuilder::check_cell, check_builder_sections in
+// table_builder.hpp). A key one typo away from a cell field is an error, not a section.
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 
 #include "plumage/materials.hpp"
@@ -41,15 +48,9 @@ struct CrystalCell {
   Material core = Material::air();
   Material channel = Material::air();
   double expected_peak_nm = 0;  // 0 when not given
-  // Numerics of the periodic FDTD table builder for this cell (optional `fdtd:` map; the
-  // measured reason per crystal is in plugins/fdtd_periodic/NOTES.md §3a): refit of the materials
-  // against the Yee numerical dispersion, exact (chord) fill fractions of mixed cells, and the anchors
-  // per entry of the grazing continuation.
-  // Defaults off: the plain scheme of the cached production tables (opt in per crystal).
-  bool fdtd_dispersion_correction = false;
-  bool fdtd_exact_fill = false;
-  double fdtd_resolution_nm = 0;  // production grid step of this crystal; 0: the builder's (10 nm)
-  int fdtd_grazing_anchors = 2;  // anchors of the grazing continuation (Z polynomial in κ² of degree − 1)
+  // Table-builder sections by builder type (e.g. "fdtd_periodic"), unread by core: each builder
+  // reads its own with its parameter table and finish()es it (unknown keys name file:line).
+  std::map<std::string, ParamView> builder_sections;
 
   double rod_depth_nm(int row) const { return cortex_nm + 0.5 * rod_diameter_nm + row * a_z_nm; }
   double depth_nm() const { return rod_depth_nm(rows - 1) + 0.5 * rod_diameter_nm; }
@@ -57,7 +58,8 @@ struct CrystalCell {
 };
 
 // Parses the `crystal:` map (node = that map). Validates every value and checks that rods do not
-// overlap their neighbours, cores fit in rods and channels fit between rods.
+// overlap their neighbours, cores fit in rods and channels fit between rods. Its parameters are
+// declared once (crystal_cell.cpp: a ParamTable, listed in docs/parameters.md).
 CrystalCell parse_crystal_cell(const ParamView& node);
 // Loads a crystal file (top-level key `crystal:`), rejecting unknown keys.
 CrystalCell load_crystal_cell(const std::filesystem::path& file);

@@ -3,40 +3,92 @@
 #pragma GCC optimize("fp-contract=off")
 #include "plumage/crystal_cell.hpp"
 
-#include <array>
+#include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "plumage/config_document.hpp"
+#include "plumage/config_sections.hpp"
+#include "plumage/param_table.hpp"
+#include "yaml_state.hpp"
 
 namespace plumage {
 
-CrystalCell parse_crystal_cell(const ParamView& node) {
-  CrystalCell c;
-  c.name = node.text("name");
-  static constexpr std::array<std::string_view, 2> lattices{"hexagonal", "rectangular"};
-  c.lattice = node.choice("lattice", lattices) == "hexagonal" ? CrystalCell::Lattice::hexagonal
-                                                               : CrystalCell::Lattice::rectangular;
-  c.a_x_nm = node.number("a_x_nm", Limits::positive());
-  c.a_z_nm = node.number("a_z_nm", Limits::positive());
-  c.rod_diameter_nm = node.number("rod_diameter_nm", Limits::positive());
-  c.core_diameter_nm = node.number_or("core_diameter_nm", 0.0, Limits::non_negative());
-  c.channel_diameter_nm = node.number_or("channel_diameter_nm", 0.0, Limits::non_negative());
-  c.rows = static_cast<int>(node.integer("rows", Limits::closed(1, 1000)));
-  c.cortex_nm = node.number("cortex_nm", Limits::non_negative());
-  c.expected_peak_nm = node.number_or("expected_peak_nm", 0.0, Limits::non_negative());
-  if (auto f = node.child_if("fdtd")) {
-    c.fdtd_dispersion_correction = f->boolean_or("dispersion_correction", false);
-    c.fdtd_exact_fill = f->boolean_or("exact_fill", false);
-    c.fdtd_resolution_nm = f->number_or("resolution_nm", 0.0, Limits::non_negative());
-    c.fdtd_grazing_anchors = static_cast<int>(f->integer_or("grazing_anchors", 2, Limits::closed(1, 5)));
-  }
+namespace {
+
+using Lattice = CrystalCell::Lattice;
+
+// The `materials:` map: host, rod, core, channel, each a material name or map.
+void read_materials(const ParamView& node, CrystalCell& c) {
   if (auto m = node.child_if("materials")) {
     if (m->has("host")) c.host = parse_material(*m, "host");
     if (m->has("rod")) c.rod = parse_material(*m, "rod");
     if (m->has("core")) c.core = parse_material(*m, "core");
     if (m->has("channel")) c.channel = parse_material(*m, "channel");
   }
+}
+
+const ParamTable<CrystalCell>& crystal_table() {
+  static const auto table =
+      ParamTable<CrystalCell>{}
+          .text("name", &CrystalCell::name, required, "name of the cell (the table's crystal name)")
+          .choice("lattice", &CrystalCell::lattice,
+                  std::vector<std::pair<std::string_view, Lattice>>{{"hexagonal", Lattice::hexagonal},
+                                                                    {"rectangular", Lattice::rectangular}},
+                  required,
+                  "hexagonal (odd rows shifted by a_x/2) | rectangular (rows above each other)")
+          .number("a_x_nm", &CrystalCell::a_x_nm, "nm", required, Limits::positive(), "period along the surface")
+          .number("a_z_nm", &CrystalCell::a_z_nm, "nm", required, Limits::positive(), "row spacing in depth")
+          .number("rod_diameter_nm", &CrystalCell::rod_diameter_nm, "nm", required, Limits::positive(),
+                  "outer diameter of the rods (melanosomes)")
+          .number("core_diameter_nm", &CrystalCell::core_diameter_nm, "nm", 0.0, Limits::non_negative(),
+                  "air core of hollow rods (0: solid)")
+          .number("channel_diameter_nm", &CrystalCell::channel_diameter_nm, "nm", 0.0, Limits::non_negative(),
+                  "channel at (a_x/2, z_j + a_z/2) below each row (rectangular lattices; 0: none)")
+          .integer("rows", &CrystalCell::rows, "1", required, Limits::closed(1, 1000), "rows of rods")
+          .number("cortex_nm", &CrystalCell::cortex_nm, "nm", required, Limits::non_negative(),
+                  "host material from the surface to the top of the first row")
+          .number("expected_peak_nm", &CrystalCell::expected_peak_nm, "nm", 0.0, Limits::non_negative(),
+                  "informational: expected reflectance peak at normal incidence (0: not given)")
+          .custom("materials", "map", "-", "{}", "materials of the cell's parts", read_materials)
+          .nested_specs({{"host", "material", "-", "keratin", "around the rods"},
+                         {"rod", "material", "-", "melanin", "the rods"},
+                         {"core", "material", "-", "air", "cores of hollow rods"},
+                         {"channel", "material", "-", "air", "the channels"}});
+  return table;
+}
+
+const ConfigSectionRegistration kCrystalSection{
+    {"crystal", "crystal", "the photonic-crystal unit cell (a map under any other key is a table builder's section)",
+     [] { return crystal_table().specs(); }}};
+
+// Every map under a key the table does not declare is a table builder's section, kept unread (a
+// view of its own, outside this map's bookkeeping, so that finish() leaves it to the builder). A
+// key within a typo of a cell field is reported as the unknown key it is.
+void collect_builder_sections(const ParamView& node, CrystalCell& c) {
+  const std::vector<std::string> fields = crystal_table().names();
+  const std::vector<std::string> known = node.known_keys();
+  for (const std::string& key : node.keys()) {
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    const YAML::Node& map = node.state()->node;
+    const YAML::Node value = map[key];
+    if (!value.IsMap()) continue;  // finish() reports it
+    if (auto near = nearest_name(key, fields)) {
+      node.fail(key, "unknown key (did you mean '" + *near + "'?); a map under any other key is a table builder's section");
+    }
+    auto state = std::make_shared<ParamView::State>();
+    state->node = value;
+    state->file = node.file();
+    state->path = node.path_of(key);
+    node.accept(key);
+    c.builder_sections.emplace(key, ParamView(state));
+  }
+}
+
+}  // namespace
+
+CrystalCell parse_crystal_cell(const ParamView& node) {
+  CrystalCell c = crystal_table().read(node);
+  collect_builder_sections(node, c);
   const double d = c.rod_diameter_nm;
   if (c.core_diameter_nm >= d) node.fail("core_diameter_nm", "the air core must be smaller than the rod");
   if (d >= c.a_x_nm) node.fail("rod_diameter_nm", "rods of one row overlap (rod diameter >= a_x)");

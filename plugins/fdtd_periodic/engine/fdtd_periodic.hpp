@@ -1,6 +1,7 @@
 // plumage — periodic 2.5D FDTD engine for photonic-crystal barbules (issue 5).
 //
-// Pure C++20 + Eigen3; no dependency on plumage core headers.
+// C++20 + Eigen3 + oneTBB (run_batch); of plumage core only the error types (plumage/error.hpp:
+// FieldBlowUp is a plumage::NumericalError). Sources by phase: see sim.hpp.
 //
 // ---------------------------------------------------------------------------------------------
 // FRAME (engine frame, right-handed):
@@ -40,6 +41,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "plumage/error.hpp"
 
 namespace plumage::fdtd {
 
@@ -108,14 +111,6 @@ struct Cell {
     int material_at(double x, double z) const;
 };
 
-enum class MaterialMode { Broadband, ConstantAtLambda };
-/// The 14 reference cells of photonic-crystals.md (e.g. "mallard-green", "magpie-blue",
-/// "peacock-cyan"). Materials: 0 air, 1 keratin, 2 melanin. In ConstantAtLambda mode the
-/// materials are constant complex ε at lambda_ref (exact single-wavelength reference).
-Cell spec_cell(const std::string& variant, MaterialMode mode = MaterialMode::Broadband,
-               double lambda_ref_um = 0.55);
-std::vector<std::string> spec_cell_names();
-
 // ------------------------------------------------------------------ parameters & results
 /// Time discretisation of the Lorentz ADE  P̈ + γṖ + ω0² P = Δε ω0² E  (NOTES.md §3b).
 ///  Bilinear (default): ω0² P and the drive Δε ω0² E averaged as (X⁺ + 2X + X⁻)/4, damping by
@@ -167,7 +162,7 @@ struct SimParams {
     bool source_cut_edge = false;
     double max_time = 400.0;      ///< hard cap of simulated time (µm/c)
     double dft_tol = 3e-4;        ///< stop when the scattered DFTs change by < tol (relative to the incident, per ~1 µm/c, twice)
-    /// Blow-up guard (checked every 10 steps): throw std::runtime_error if a field is non-finite,
+    /// Blow-up guard (checked every 10 steps): throw FieldBlowUp if a field is non-finite,
     /// if a main grid's energy exceeds factor × nx × its normalisation grid's energy so far, or
     /// if a normalisation grid's energy exceeds factor × its own source-phase maximum.
     double blowup_factor = 1e4;
@@ -225,16 +220,27 @@ double nyquist_eps(const MaterialModel& m, double dt, LorentzUpdate update);
 /// CentralDifference also the largest dt with dt²(8/h² + k_y²) ≤ 4 ε_N(dt) for every material.
 double stable_time_step(const Cell& cell, double h, double ky, LorentzUpdate update);
 
+/// Field blow-up caught by the run-time energy guard (SimParams::blowup_factor): the run is
+/// unstable. what() names the energies, the step, the time and dt as a fraction of the limit.
+class FieldBlowUp : public plumage::NumericalError {
+public:
+    FieldBlowUp(const std::string& message, int step, double time_um, double dt, double dt_limit);
+    int step;          ///< time step at which the guard fired
+    double time_um;    ///< simulated time then (µm/c)
+    double dt, dt_limit;
+};
+
 /// One broadband run at fixed (k_x, k_y): both source families (J_y and M_y sheets) plus their
 /// 1-cell-wide normalisation runs, stepped in lockstep. Throws std::invalid_argument on a time
-/// step above the Courant limit and std::runtime_error on field blow-up.
+/// step above the Courant limit and FieldBlowUp on field blow-up.
 Spectrum run_spectrum(const Cell& cell, double kx, double ky, const std::vector<double>& omegas,
                       const SimParams& params);
 
 struct Job {
     double kx, ky;
 };
-/// Independent runs spread over `threads` worker threads (results in job order).
+/// Independent runs on at most `threads` oneTBB workers (results in job order; each run is
+/// sequential, so the results do not depend on the thread count).
 std::vector<Spectrum> run_batch(const Cell& cell, const std::vector<Job>& jobs,
                                 const std::vector<double>& omegas, const SimParams& params,
                                 int threads = 2);

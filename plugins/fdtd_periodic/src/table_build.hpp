@@ -13,8 +13,6 @@
 //   J = C B⁻¹.
 #pragma once
 
-#include "plumage/accuracy_ladder.hpp"
-
 #include <functional>
 #include <string>
 #include <utility>
@@ -37,7 +35,7 @@ struct Options {
   std::string checkpoint_tag;  // identifies the cell (e.g. its config hash)
   // Entries with k_z/k0 < sim.kz_min: anchors per entry of the grazing continuation
   // (grazing.hpp; Z polynomial in κ² of degree anchors − 1).
-  // (per crystal: CrystalCell::fdtd_grazing_anchors; 3 for magpie and peacock, NOTES §5a)
+  // (per crystal: its `fdtd_periodic: {grazing_anchors}`; 3 for magpie and peacock, NOTES §5a)
   int grazing_anchors = 2;
 };
 
@@ -57,12 +55,13 @@ JonesReflection jones_from_engine(const fdtd::FreqResult& f);
 // continued to the grazing limit diag(−1, −1) in the surface-impedance form of grazing.hpp from
 // anchors on their radial k_∥ line inside the simulated region; counts and other-order warnings
 // go to meta.notes. ax_um: lateral period (for the grid step h = ax/nx).
+// `stats` (optional) receives the run counts.
+struct BuildStats {
+  std::size_t runs = 0;          // engine runs done by this build
+  std::size_t resumed_runs = 0;  // runs read back from the checkpoint instead
+};
 ReflectionTable build_table(const CellFactory& make_cell, double ax_um, const TableGrid& grid,
                             TableMetadata meta, const Options& options,
-                            const TableBuilder::Progress& progress);
-
-// The plug-in's accuracy ladder (ladder/fdtd_ladder.cpp, issue 9); crystal_file: the crystal of
-// its second case.
-std::vector<LadderPoint> run_fdtd_ladder(const AccuracyLadder::Options& options, const std::string& crystal_file);
+                            const TableBuilder::Progress& progress, BuildStats* stats = nullptr);
 
 }  // namespace plumage::fdtd_table

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "plumage/crystal_cell.hpp"
+#include "builder_params.hpp"
 #include "table_build.hpp"
 
 using namespace plumage;
@@ -54,6 +55,7 @@ TEST_CASE("convergence ladder of mallard, magpie and peacock crystals", "[valida
     const CrystalCell cc = load_crystal_cell(std::filesystem::path(PLUMAGE_SOURCE_DIR) / "configs/crystals" /
                                              (std::string(name) + ".yaml"));
     const fdtd::Cell cell = fdtd_table::cell_from_crystal(cc, -1.0);
+    const fdtd_table::CrystalNumerics numerics = fdtd_table::crystal_numerics(cc);
     std::vector<fdtd::Job> jobs;
     for (const auto& a : angles) {
       const auto [kx, ky] = fdtd_table::engine_k(550.0, a[0] * fdtd::kPi / 180, a[1] * fdtd::kPi / 180);
@@ -64,8 +66,8 @@ TEST_CASE("convergence ladder of mallard, magpie and peacock crystals", "[valida
     for (double h : hs_nm) {
       fdtd::SimParams p;
       p.nx = std::max(4, static_cast<int>(std::lround(cc.a_x_nm / h)));
-      p.dispersion_correction = cc.fdtd_dispersion_correction;  // the crystal's numerics (NOTES §3a)
-      p.exact_fill = cc.fdtd_exact_fill;
+      p.dispersion_correction = numerics.dispersion_correction;  // the crystal's numerics (NOTES §3a)
+      p.exact_fill = numerics.exact_fill;
       nxs.push_back(p.nx);
       rungs.push_back(fdtd::run_batch(cell, jobs, omegas, p, 2));
       double cpu = 0;

@@ -16,7 +16,9 @@
 #include <filesystem>
 #include <map>
 
+#include "builder_params.hpp"
 #include "grazing.hpp"
+#include "layered_cell.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/reflection_table.hpp"
 #include "stack_solver.hpp"
@@ -26,16 +28,8 @@ using namespace plumage;
 
 namespace {
 
-fdtd::Cell layered_cell(double h_um, double lambda_um) {
-  fdtd::Cell c;
-  c.ax = h_um;
-  const auto nk = fdtd::keratin_index(lambda_um), nm = fdtd::melanin_index(lambda_um);
-  c.materials = {fdtd::air_model(), fdtd::constant_model("keratin", nk * nk, lambda_um),
-                 fdtd::constant_model("melanin", nm * nm, lambda_um)};
-  c.slabs = {{0.3, 0.5, 2}};
-  c.structure_depth = 0.5;
-  return c;
-}
+// The layered reference cell (reference/layered_cell.hpp), one grid cell wide, constant ε at λ.
+fdtd::Cell layered_cell(double h_um, double lambda_um) { return fdtd_reference::layered_cell(h_um, 1, lambda_um); }
 
 multilayer::StackReflection stack_closed_form(double lambda_nm, double cos_alpha) {
   const std::vector<Complex> index{1.0, Material::keratin().index(lambda_nm), Material::melanin().index(lambda_nm),
@@ -120,9 +114,10 @@ TEST_CASE("grazing continuation of crystal tables against exact-eps runs", "[val
     fdtd_table::Options opt;
     opt.nx = static_cast<int>(std::lround(cc.a_x_nm / 10.0));  // production grid step
     opt.k_step_per_um = 0.0;
-    opt.sim.dispersion_correction = cc.fdtd_dispersion_correction;  // the crystal's numerics (NOTES §3a)
-    opt.sim.exact_fill = cc.fdtd_exact_fill;
-    opt.grazing_anchors = cc.fdtd_grazing_anchors;
+    const fdtd_table::CrystalNumerics numerics = fdtd_table::crystal_numerics(cc);  // the crystal's (NOTES §3a)
+    opt.sim.dispersion_correction = numerics.dispersion_correction;
+    opt.sim.exact_fill = numerics.exact_fill;
+    opt.grazing_anchors = numerics.grazing_anchors;
     fdtd_table::Options ref = opt;
     ref.sim.kz_min = 0.04;  // every entry simulated: the reference
     const ReflectionTable tr = fdtd_table::build_table(make, ax, g, {}, ref, {});

@@ -7,14 +7,18 @@
 // Airy recursion.
 #include <catch2/catch.hpp>
 
+#include "airy.hpp"
 #include "fdtd_periodic.hpp"
-#include "tmm_reference.hpp"
+#include "layered_cell.hpp"
+#include "spec_cells.hpp"
 
 #include <Eigen/Dense>
 #include <cmath>
 #include <cstdio>
 
 using namespace plumage::fdtd;
+using plumage::fdtd_testing::spec_cell;
+namespace fdtd_ref = plumage::fdtd_reference;
 
 namespace {
 
@@ -154,13 +158,7 @@ TEST_CASE("2-cell-wide layered stack at coarse steps matches the Airy recursion"
     // 40 µm/c too — its unstable corner of K space is seeded only by round-off — so the
     // crystal runs above, not this case, are the regression test of the blow-up.)
     for (double h : {0.170 / 11, 0.019}) {
-        Cell c;
-        c.ax = 2 * h;
-        c.materials = {air_model(), keratin_fit().model, melanin_fit().model};
-        c.ambient = 0;
-        c.substrate = 1;
-        c.slabs = {{0.3, 0.5, 2}};
-        c.structure_depth = 0.5;
+        const Cell c = fdtd_ref::layered_cell(h, 2, -1.0);
         SimParams P;
         P.nx = 2;
         P.dft_tol = 0.0;     // run the whole 40 µm/c
@@ -174,13 +172,13 @@ TEST_CASE("2-cell-wide layered stack at coarse steps matches the Airy recursion"
             for (const auto& f : s.freqs) {
                 if (!f.valid) continue;
                 ++nv;
-                tmmref::Stack st;
+                fdtd_ref::Stack st;
                 st.eps = {1.0, c.materials[1].eps(f.omega), c.materials[2].eps(f.omega), c.materials[1].eps(f.omega)};
                 st.thick = {0.3, 0.2};
                 Vec3c eb[2], hb[2];
                 incident_basis(f.sin_theta, f.cos_theta, f.sin_phi, f.cos_phi, eb, hb);
                 for (int q = 0; q < 2; ++q) {
-                    auto ref = tmmref::reflect(st, f.omega, kx, ky, eb[q]);
+                    auto ref = fdtd_ref::reflect(st, f.omega, kx, ky, eb[q]);
                     for (int j = 0; j < 3; ++j) worst = std::max(worst, std::abs(f.E[q][j] - ref[0][j]));
                 }
             }

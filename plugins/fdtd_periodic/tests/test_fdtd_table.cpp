@@ -18,7 +18,7 @@ using namespace plumage;
 namespace {
 
 // air | keratin 300 nm | melanin 200 nm | keratin, one grid cell wide (layered_cell.hpp).
-fdtd::Cell layered(double h_um, double lambda_um) { return fdtd_testing::layered_cell(h_um, 1, lambda_um); }
+fdtd::Cell layered(double h_um, double lambda_um) { return fdtd_reference::layered_cell(h_um, 1, lambda_um); }
 
 multilayer::StackReflection closed_form(double lambda_nm, double cos_alpha) {
   const std::vector<Complex> index{1.0, Material::keratin().index(lambda_nm),

@@ -3,12 +3,14 @@
 #include <catch2/catch.hpp>
 
 #include "fdtd_periodic.hpp"
+#include "spec_cells.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 
 using namespace plumage::fdtd;
+using plumage::fdtd_testing::spec_cell;
 
 namespace {
 std::vector<double> omegas_band() {

@@ -30,7 +30,7 @@ bool has_note(const ReflectionTable& t, std::string_view code) {
 }
 
 // The layered reference cell (layered_cell.hpp).
-fdtd::Cell layered(double h_um, int nx, double lambda_um) { return fdtd_testing::layered_cell(h_um, nx, lambda_um); }
+fdtd::Cell layered(double h_um, int nx, double lambda_um) { return fdtd_reference::layered_cell(h_um, nx, lambda_um); }
 
 // A cheap grating with a long period: keratin with one melanin rod per period a_x, 20 nm grid.
 fdtd::Cell grating(double ax_um, double lambda_um) {
@@ -82,9 +82,13 @@ TEST_CASE("engine guard: a time step 0.2 % over the limit is caught early, stabl
   try {
     fdtd::run_spectrum(cell, 0.0, 0.0, omegas, p);
     FAIL("no blow-up detected");
-  } catch (const std::runtime_error& e) {
+  } catch (const fdtd::FieldBlowUp& e) {  // typed: a plumage::NumericalError with the numbers
     const std::string msg = e.what();
     std::printf("[warnings] %s\n", msg.c_str());
+    CHECK(dynamic_cast<const NumericalError*>(&e) != nullptr);
+    CHECK(e.step > 0);
+    CHECK(e.time_um == Approx(e.step * e.dt));
+    CHECK(e.dt / e.dt_limit == Approx(1.002));
     CHECK(msg.find("blow-up") != std::string::npos);
     CHECK(msg.find("normalisation-run energy") != std::string::npos);
     CHECK(msg.find("1.002 of the stability limit") != std::string::npos);
