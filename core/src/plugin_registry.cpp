@@ -207,16 +207,26 @@ std::string unknown_type_message(const PluginRegistry& registry, std::string_vie
   return msg;
 }
 
-// One declaration per parameter (param_table.hpp): a factory may read only the keys its table
-// declares (top-level names of PluginInfo::params), so that describe, docs and reading agree.
+// One declaration per parameter (param_table.hpp), so that describe, docs and reading agree: a
+// factory may read only the keys its table declares (top-level names of PluginInfo::params), and
+// it must read every declared parameter that has no condition (ParamSpec::condition), present in
+// the section or not (ParamTable::read does both by construction).
 void check_declared(const PluginRegistry::Entry& entry, const ParamView& params, std::string_view type_key) {
+  const std::vector<std::string> known = params.known_keys();
+  const std::string who = entry.info.kind + " '" + entry.info.type + "' (" +
+                          (entry.library.empty() ? std::string("core") : entry.library.string()) + ")";
   std::vector<std::string> declared;
-  for (const ParamSpec& spec : entry.info.params) declared.push_back(spec.name.substr(0, spec.name.find('.')));
-  for (const std::string& key : params.known_keys()) {
+  for (const ParamSpec& spec : entry.info.params) {
+    const std::string top = spec.name.substr(0, spec.name.find('.'));
+    declared.push_back(top);
+    if (spec.condition.empty() && top == spec.name && !std::binary_search(known.begin(), known.end(), top)) {
+      throw PluginError(who + " declares the parameter '" + top +
+                        "' but did not read it (give it a condition in its table if it applies only sometimes)");
+    }
+  }
+  for (const std::string& key : known) {
     if (key == type_key || std::find(declared.begin(), declared.end(), key) != declared.end()) continue;
-    throw PluginError(entry.info.kind + " '" + entry.info.type + "' (" +
-                      (entry.library.empty() ? std::string("core") : entry.library.string()) +
-                      ") read the parameter '" + key + "', which its parameter table does not declare");
+    throw PluginError(who + " read the parameter '" + key + "', which its parameter table does not declare");
   }
 }
 

@@ -85,3 +85,45 @@ TEST_CASE("search path order: explicit, environment, beside the executable, pref
   CHECK(dirs[2] == "/env/two");
   CHECK(dirs[3].string().ends_with("lib/plumage/plugins"));
 }
+
+namespace {
+
+// A local_reflection built into the test that reads `read` and declares `declared`.
+class Constant final : public LocalReflection {
+ public:
+  void reflect(std::span<const Request> requests, std::span<JonesReflection> out) const override {
+    for (std::size_t i = 0; i < requests.size(); ++i) out[i] = {};
+  }
+};
+
+void add_builtin(PluginRegistry& registry, const std::string& type, std::vector<ParamSpec> declared,
+                 std::vector<std::string> read) {
+  registry.builtin_registrar().add<LocalReflection>(
+      {.type = type, .version = "1", .summary = "test", .params = std::move(declared)},
+      [read](const ParamView& p, const PluginContext&) {
+        for (const auto& key : read) p.number_or(key, 1.0);
+        return std::make_unique<Constant>();
+      });
+}
+
+}  // namespace
+
+TEST_CASE("a factory reads exactly the parameters its table declares", "[plugins][param-table]") {
+  PluginRegistry registry;
+  add_builtin(registry, "reads_undeclared", {{"a", "number", "1", "1", "declared"}}, {"a", "b"});
+  add_builtin(registry, "skips_declared", {{"a", "number", "1", "1", "declared"}, {"b", "number", "1", "1", "x"}}, {"a"});
+  ParamSpec conditional{"b", "number", "1", "1", "only for films"};
+  conditional.condition = "model: films";
+  add_builtin(registry, "conditional", {{"a", "number", "1", "1", "declared"}, conditional}, {"a"});
+  add_builtin(registry, "nested", {{"a", "map", "-", "{}", "a map"}, {"a.x", "number", "1", "1", "in a"}}, {"a"});
+  const ParamView none;
+  CHECK_THROWS_WITH(registry.create_named<LocalReflection>("reads_undeclared", none, registry.context()),
+                    Catch::Contains("read the parameter 'b', which its parameter table does not declare"));
+  CHECK_THROWS_WITH(registry.create_named<LocalReflection>("skips_declared", none, registry.context()),
+                    Catch::Contains("declares the parameter 'b' but did not read it"));
+  CHECK_NOTHROW(registry.create_named<LocalReflection>("conditional", none, registry.context()));
+  CHECK_NOTHROW(registry.create_named<LocalReflection>("nested", none, registry.context()));
+  // Through a config section the type key is the host's, not the factory's.
+  auto doc = ConfigDocument::parse("reflection: {model: conditional, a: 2}\n", "c.yaml");
+  CHECK_NOTHROW(registry.create<LocalReflection>(doc.root().child("reflection"), "model", registry.context()));
+}
