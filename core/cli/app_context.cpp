@@ -1,8 +1,10 @@
 #include "app_context.hpp"
 
 #include <iostream>
+#include <memory>
 
 #include "plumage/builtin_plugins.hpp"
+#include "progress.hpp"
 
 namespace plumage::cli {
 
@@ -10,10 +12,34 @@ const PluginRegistry& AppContext::registry() {
   if (!registry_) {
     registry_ = std::make_unique<PluginRegistry>();
     register_builtin_plugins(*registry_);
-    register_cli_ladders(*registry_);
     registry_->load_search_path(PluginRegistry::search_path(plugin_dirs));
   }
   return *registry_;
+}
+
+PreparationOptions AppContext::preparation() const {
+  PreparationOptions options;
+  options.tables = tables == "preview" ? PreparationOptions::Tables::preview
+                   : tables == "never" ? PreparationOptions::Tables::never
+                                       : PreparationOptions::Tables::build;
+  if (quiet) return options;
+  // A status line for total 0, else one progress bar per kind of work.
+  struct Bar {
+    std::string what;
+    std::unique_ptr<Progress> progress;
+  };
+  options.progress = [bar = std::make_shared<Bar>()](std::size_t done, std::size_t total, std::string_view what) {
+    if (total == 0) {
+      std::cerr << what << "\n";
+      return;
+    }
+    if (!bar->progress || bar->what != what) {
+      bar->what = std::string(what);
+      bar->progress = std::make_unique<Progress>(bar->what, total, false);
+    }
+    bar->progress->advance(done);
+  };
+  return options;
 }
 
 void AppContext::warn_about_problems() const {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "plumage/local_reflection.hpp"
 #include "plumage/plugin_registry.hpp"
 
 namespace plumage::cli {
@@ -17,13 +18,15 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Accuracy ladders that live in the CLI (ladder_approximate.cpp): registered as built-ins.
-void register_cli_ladders(PluginRegistry& registry);
-
 class AppContext {
  public:
   std::vector<std::filesystem::path> plugin_dirs;  // from --plugin-path
   bool quiet = false;
+  std::string tables = "build";  // --tables: build | preview | never
+
+  // How the preparation step (prepare_species) may get a model's tables (--tables), with a
+  // progress line on stderr unless --quiet.
+  PreparationOptions preparation() const;
 
   // The registry, loaded on first use from the search path.
   const PluginRegistry& registry();

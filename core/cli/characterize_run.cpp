@@ -131,7 +131,7 @@ JournalResume read_journal_resume(const std::filesystem::path& journal, const Ch
 
 void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, const std::vector<std::size_t>& todo,
                     const std::filesystem::path& journal, std::uintmax_t valid_bytes, bool quiet,
-                    std::vector<DiagnosticUnit>* diagnostics) {
+                    std::vector<DiagnosticUnit>* diagnostics, const PreparationOptions& preparation) {
   // Warning codes are attributed to groups by their raise counts before and after each group
   // (groups run one after another); those raised while preparing the instances go to every group
   // this process computes.
@@ -151,6 +151,7 @@ void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, 
   const auto before_prepare = raise_counts();
   std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepared(static_cast<std::size_t>(s.instances));
   if (!todo.empty()) {
+    prepare_species(config, preparation);
     tbb::parallel_for(0, s.instances, [&](int n) {
       const CrossSection cs = config.structure->generate(static_cast<std::uint64_t>(n));
       prepared[n] = config.solver->prepare(cs, config.reflection);
@@ -172,7 +173,8 @@ void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, 
 }
 
 CharacterizeRun characterize_to_file(const SpeciesConfig& config, const CharacterizeSettings& s,
-                                     const std::filesystem::path& out, bool quiet) {
+                                     const std::filesystem::path& out, bool quiet,
+                                     const PreparationOptions& preparation) {
   if (!config.structure) throw UsageError(config.file.string() + ": no `structure:` section to characterise");
   std::filesystem::path journal = out;
   journal += ".journal";
@@ -193,7 +195,7 @@ CharacterizeRun characterize_to_file(const SpeciesConfig& config, const Characte
   CharacterizeRun run;
   const auto wall0 = std::chrono::steady_clock::now();
   const std::clock_t cpu0 = std::clock();
-  compute_groups(config, s, todo, journal, resume.valid_bytes, quiet, nullptr);
+  compute_groups(config, s, todo, journal, resume.valid_bytes, quiet, nullptr, preparation);
   const JournalContents all = read_journal(journal);
   write_feather_material(out, assemble_material(s, all.records));
   std::filesystem::remove(journal);

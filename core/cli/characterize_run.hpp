@@ -42,11 +42,12 @@ struct JournalResume {
 };
 JournalResume read_journal_resume(const std::filesystem::path& journal, const CharacterizeSettings& s);
 
-// Prepares every instance (in parallel, only if there is work) and appends the groups `todo`
-// to the journal in order, with progress on stderr unless quiet.
+// Runs the preparation step (prepare_species with `preparation`) and prepares every instance (in
+// parallel; both only if there is work), then appends the groups `todo` to the journal in order,
+// with progress on stderr unless quiet. Warnings raised while preparing go to every group.
 void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, const std::vector<std::size_t>& todo,
                     const std::filesystem::path& journal, std::uintmax_t valid_bytes, bool quiet,
-                    std::vector<DiagnosticUnit>* diagnostics);
+                    std::vector<DiagnosticUnit>* diagnostics, const PreparationOptions& preparation);
 
 struct CharacterizeRun {
   double wall_s = 0, cpu_s = 0;
@@ -56,6 +57,7 @@ struct CharacterizeRun {
 // then the material, written atomically to `out`; the journal is removed on success. Progress on
 // stderr unless quiet.
 CharacterizeRun characterize_to_file(const SpeciesConfig& config, const CharacterizeSettings& s,
-                                     const std::filesystem::path& out, bool quiet);
+                                     const std::filesystem::path& out, bool quiet,
+                                     const PreparationOptions& preparation);
 
 }  // namespace plumage::cli

@@ -137,7 +137,10 @@ void run(AppContext& context, const Options& o) {
     const auto wall0 = std::chrono::steady_clock::now();
     const std::clock_t cpu0 = std::clock();
     auto diag = diagnostic_units(s);
-    compute_groups(config, s, todo, journal, resume.valid_bytes, quiet, o.diagnostics.empty() ? nullptr : &diag);
+    PreparationOptions preparation = context.preparation();
+    if (quiet) preparation.progress = nullptr;  // other MPI ranks
+    compute_groups(config, s, todo, journal, resume.valid_bytes, quiet, o.diagnostics.empty() ? nullptr : &diag,
+                   preparation);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     const double cpu = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
 

@@ -2,6 +2,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "plumage/comparison.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/scene_config.hpp"
@@ -15,18 +16,23 @@ void check_file(AppContext& context, const std::string& file) {
   auto doc = ConfigDocument::load(file);
   ParamView root = doc.root();
   if (root.has("comparison")) {  // before `species`, which a comparison names too
-    const std::string what = check_comparison_config(file, context);
+    const std::string what = check_comparison_config(file, context.registry());
     if (!context.quiet) std::cout << file << ": ok (" << what << ")\n";
     return;
   }
   if (root.has("species")) {
     auto variants = species_variants(file);
     if (variants.empty()) variants.push_back("");
-    for (const auto& v : variants) load_species_config(file, context.registry(), v);
+    std::vector<std::string> pending;  // what the preparation step would do (check builds nothing)
+    for (const auto& v : variants) {
+      const std::string work = pending_preparation(load_species_config(file, context.registry(), v));
+      if (!work.empty()) pending.push_back((v.empty() ? "" : v + ": ") + work);
+    }
     if (!context.quiet) {
       std::cout << file << ": ok (species";
       if (!variants.front().empty()) std::cout << ", " << variants.size() << " variants";
       std::cout << ")\n";
+      for (const auto& work : pending) std::cout << "  to prepare: " << work << "\n";
     }
     return;
   }

@@ -45,6 +45,7 @@ void run(AppContext& context, const Options& o) {
   }
   auto model = context.registry().create_named<LocalReflection>(o.model, ParamView{},
                                                                 context.registry().context());
+  model->prepare(context.preparation());  // the explicit preparation step of any --model
 
   std::vector<LocalReflection::Request> requests;
   for (double t : thetas) {

@@ -1,16 +1,11 @@
 // `plumage spectra CONFIG...`: reflectance spectra of each species' nominal local layer stack,
-// through the species' own LocalReflection plug-in: the quick look at what colour a species'
-// structure selects, before any geometry or far-field simulation.
-#include <fstream>
-#include <iomanip>
+// through the species' own LocalReflection plug-in (plumage/stack_spectra.hpp).
 #include <iostream>
-#include <sstream>
 
-#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "grid_parse.hpp"
 #include "plumage/atomic_file.hpp"
-#include "plumage/species_config.hpp"
+#include "plumage/stack_spectra.hpp"
 
 namespace plumage::cli {
 
@@ -35,51 +30,22 @@ void run(AppContext& context, const Options& o) {
   std::vector<SpeciesConfig> species;
   for (const auto& file : o.configs) species.push_back(load_species_config(file, context.registry(), o.variant));
 
-  std::ostringstream csv;
-  csv << "# unpolarized R = (R_s + R_p)/2 of each species' nominal_stack; theta = angle of "
-         "incidence on the stack\n"
-      << "species,variant,theta_deg,lambda_nm,R_s,R_p,R\n"
-      << std::setprecision(10);
-  LineChart chart;
-  chart.title = "Reflectance of the nominal layer stack (unpolarized)";
-  chart.x_label = "wavelength (nm)";
-  chart.y_label = "reflectance";
-  int used = 0;
-  for (const auto& s : species) {
-    if (!s.nominal_stack || !s.reflection) {
-      if (!context.quiet) {
-        std::cerr << "note: " << s.file.string() << ": no nominal_stack/reflection; skipped\n";
-      }
-      continue;
-    }
-    ++used;
-    std::vector<LocalReflection::Request> requests;
-    for (double t : thetas) {
-      for (double l : lambdas) requests.push_back({l, {0.0, deg_to_rad(t)}, &*s.nominal_stack});
-    }
-    std::vector<JonesReflection> out(requests.size());
-    s.reflection->reflect(requests, out);
-    const std::string panel = s.common_name + (s.variant.empty() ? "" : " (" + s.variant + ")");
-    for (std::size_t i = 0; i < requests.size(); ++i) {
-      const double theta = rad_to_deg(requests[i].incidence.phi_local_rad);
-      const double rs = std::norm(out[i].ss), rp = std::norm(out[i].pp);
-      csv << s.species << ',' << s.variant << ',' << theta << ',' << requests[i].lambda_nm << ','
-          << rs << ',' << rp << ',' << 0.5 * (rs + rp) << '\n';
-      std::ostringstream series;
-      series << "θ = " << theta << "°";
-      chart.points.push_back({panel, series.str(), requests[i].lambda_nm, 0.5 * (rs + rp)});
-    }
+  std::vector<std::filesystem::path> skipped;
+  const auto spectra = nominal_stack_spectra(species, lambdas, thetas, context.preparation(), &skipped);
+  if (!context.quiet) {
+    for (const auto& file : skipped) std::cerr << "note: " << file.string() << ": no nominal_stack/reflection; skipped\n";
   }
-  if (used == 0) throw UsageError("none of the configs has a nominal_stack to draw");
+  if (spectra.empty()) throw UsageError("none of the configs has a nominal_stack to draw");
   if (!o.plot.empty()) {
-    draw_line_chart(chart, o.plot);
+    draw_stack_spectra(spectra, o.plot);
     if (!context.quiet) std::cerr << "wrote " << o.plot << "\n";
   }
+  const std::string csv = stack_spectra_csv(spectra);
   if (!o.csv.empty()) {
-    write_text_atomically(o.csv, csv.str());
+    write_text_atomically(o.csv, csv);
     if (!context.quiet) std::cerr << "wrote " << o.csv << "\n";
   } else {
-    std::cout << csv.str();
+    std::cout << csv;
   }
 }
 

@@ -16,18 +16,11 @@ void add_simulate_command(CLI::App& app, AppContext& context);
 void add_geometry_command(CLI::App& app, AppContext& context);
 void add_table_command(CLI::App& app, AppContext& context);  // cmd_table.cpp
 void add_compare_command(CLI::App& app, AppContext& context);       // cmd_compare.cpp
-// Loads a comparison config as `plumage compare` would (solvers created, nothing run) and says
-// what it holds in one line; for `plumage check`. Throws ConfigError naming file, line and field.
-std::string check_comparison_config(const std::string& file, AppContext& context);  // cmd_compare.cpp
 void add_characterize_command(CLI::App& app, AppContext& context);  // cmd_characterize.cpp
 void add_merge_command(CLI::App& app, AppContext& context);         // cmd_merge.cpp
 void add_brdf_command(CLI::App& app, AppContext& context);          // cmd_brdf.cpp
 void add_render_command(CLI::App& app, AppContext& context);        // cmd_render.cpp (issue 8)
-// `bench geometry` (bench_geometry.cpp), added under the `bench` subcommand.
-void add_bench_geometry_command(CLI::App& bench, AppContext& context);
 void add_bench_fdtd_command(CLI::App& bench, AppContext& context);  // bench_fdtd.cpp
-void add_bench_bem_command(CLI::App& bench, AppContext& context);     // bench_bem.cpp
 void add_bench_render_command(CLI::App& bench, AppContext& context);  // bench_render.cpp (issue 8)
-void add_bench_ladder_command(CLI::App& bench, AppContext& context);  // bench_ladder.cpp (issue 9)
 
 }  // namespace plumage::cli

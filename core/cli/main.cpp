@@ -17,6 +17,14 @@ int main(int argc, char** argv) {
                  "Extra folder(s) searched first for plug-ins (then $PLUMAGE_PLUGIN_PATH, "
                  "beside the executable, the install prefix)");
   app.add_flag("-q,--quiet", context.quiet, "No progress or warnings on stderr");
+  app.add_option("--tables", context.tables,
+                 "Tables of the preparation step (crystal reflection tables): build (load or build as "
+                 "configured), preview (a 4 x 5 x 5 preview table instead: a test shortcut, recorded as a "
+                 "warning in every file) or never (refuse to build)")
+      ->check(CLI::IsMember({"build", "preview", "never"}))
+      ->capture_default_str();
+  // Global options may follow the subcommand (`plumage characterize ... --tables preview`).
+  app.fallthrough();
   app.require_subcommand(1);
   // Warnings (plumage/diagnostics.hpp) are echoed on stderr unless --quiet.
   app.parse_complete_callback([&context] {
@@ -36,6 +44,8 @@ int main(int argc, char** argv) {
   add_brdf_command(app, context);
   add_merge_command(app, context);
   add_render_command(app, context);
+  // `bench` hands everything after it to the benchmark (prefix command): nothing falls through.
+  app.get_subcommand("bench")->fallthrough(false);
 
   try {
     app.parse(argc, argv);

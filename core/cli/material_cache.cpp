@@ -95,7 +95,9 @@ ResolvedFeather resolve_feather_material(const FeatherMaterialRequest& q, AppCon
                      " --fidelity preview --out " + out.string() + "`");
   }
   fs::create_directories(cache_dir);
-  const CharacterizeRun run = characterize_to_file(config, preset_settings(config, "preview"), out, quiet);
+  PreparationOptions preparation = context.preparation();
+  if (quiet) preparation.progress = nullptr;
+  const CharacterizeRun run = characterize_to_file(config, preset_settings(config, "preview"), out, quiet, preparation);
   if (!quiet)
     std::cerr << "material " << label << ": characterised at preview fidelity in " << std::fixed << std::setprecision(1)
               << run.wall_s << " s wall, " << run.cpu_s << " s CPU -> " << out.string() << "\n";

@@ -5,11 +5,21 @@
 
 namespace plumage {
 
-void register_validation_shape(PluginRegistry& registry);  // geometry/validation_shape.cpp
+void register_validation_shape(PluginRegistry& registry);     // geometry/validation_shape.cpp
+void register_approximate_ladder(PluginRegistry& registry);    // solver/approximate_ladder.cpp
+void register_approximate_benchmark(PluginRegistry& registry); // solver/approximate_benchmark.cpp
+void register_fit_ladder(PluginRegistry& registry);            // fit/fit_ladder.cpp
+void register_geometry_benchmark(PluginRegistry& registry);    // geometry/geometry_benchmark.cpp
+void register_ladder_benchmark(PluginRegistry& registry);      // report/ladder_benchmark.cpp
 
 void register_builtin_plugins(PluginRegistry& registry) {
   register_validation_shape(registry);
   register_approximate_solver(registry);
+  register_approximate_ladder(registry);
+  register_approximate_benchmark(registry);
+  register_fit_ladder(registry);
+  register_geometry_benchmark(registry);
+  register_ladder_benchmark(registry);
 }
 
 }  // namespace plumage

@@ -166,3 +166,42 @@ TEST_CASE("plumage geometry writes instances, pictures and statistics", "[cli][g
   r = run("check " + source("configs/crystals/peacock-cyan.yaml"));
   CHECK(r.status == 0);
 }
+
+TEST_CASE("plumage bench multilayer is the multilayer plug-in's benchmark", "[cli][bench]") {
+  auto r = run("bench multilayer --layers 4 --points 20 --wavelengths 3 --repeats 2");
+  INFO(r.output);
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("## multilayer") && Catch::Contains("60 evaluations per run") &&
+                           Catch::Contains("`plumage bench multilayer --layers 4 --points 20 --wavelengths 3`"));
+  r = run("bench multilayer --help");
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("--layers VALUE") && Catch::Contains("default 30"));
+  r = run("bench multilayer --layers 0");
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("layers"));
+}
+
+// The explicit preparation step (issue 22): a crystal species' table is built before simulating,
+// by option; `check` says what is to build and builds nothing; `never` refuses by name.
+TEST_CASE("crystal tables come from the preparation step, as --tables says", "[cli][tables]") {
+  const fs::path dir = plumage::cli_test::fresh_scratch_path("plumage-test-cli", "tables");
+  fs::create_directories(dir);
+  const std::string in_dir = "cd " + dir.string() + " && " + PLUMAGE_EXE + " ";
+  const std::string mallard = source("configs/species/mallard.yaml");
+  auto r = run_command(in_dir + "check " + mallard);
+  INFO(r.output);
+  CHECK(r.status == 0);
+  CHECK_THAT(r.output, Catch::Contains("to prepare: green: build the reflection table of mallard-green "
+                                       "(50 x 20 x 50 entries) into build/cache/tables/mallard-green-"));
+  CHECK_FALSE(fs::exists(dir / "build"));
+  r = run_command(in_dir + "--tables never simulate " + mallard +
+                  " --lambda-nm 550 --theta-deg 0 --phi-deg 0 --instances 1 --out x.ffs");
+  CHECK(r.status == 1);
+  CHECK_THAT(r.output, Catch::Contains("mallard-green (50 x 20 x 50 entries)") && Catch::Contains("--tables build"));
+  CHECK_FALSE(fs::exists(dir / "x.ffs"));
+  // The option may follow the subcommand; a bad value is a usage error.
+  r = run_command(in_dir + "simulate " + mallard + " --tables sometimes --out x.ffs");
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("--tables"));
+  fs::remove_all(dir);
+}

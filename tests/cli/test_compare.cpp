@@ -139,6 +139,9 @@ TEST_CASE("plumage compare: a tiny approximate-against-approximate comparison", 
     CHECK(t.at("solver") == "approximate");
   }
   CHECK(times[2].at("geometry") == "reduced_layers");
+  // The solver section as written, one CSV cell (commas and double quotes replaced).
+  CHECK(times[0].at("options") == "{'type': 'approximate'; 'currents': 'reflected'}");
+  CHECK(times[3].at("options") == "{'type': 'approximate'; 'currents': 'incident_and_reflected'}");
   // The summary table on stdout names the reference.
   CHECK_THAT(r.output, Catch::Contains("(reference)") && Catch::Contains("incident_and_reflected"));
 }
@@ -176,6 +179,23 @@ TEST_CASE("plumage compare --instance: another barbule of the same comparison", 
   CHECK(!fs::exists(bad_dir));
 }
 
+TEST_CASE("plumage compare: a selection the config does not have is refused at its flag", "[cli][compare]") {
+  const std::string config = source("tests/cli/data/compare-tiny.yaml");
+  struct Case {
+    std::string flags, expect;
+  };
+  for (const Case& c : {Case{"--only nosuch", "--only: " + config + " has no method named 'nosuch'"},
+                        Case{"--reference nosuch", "--reference: " + config + " has no method named 'nosuch'"},
+                        Case{"--wavelengths 500", "--wavelengths: " + config + " has no wavelength 500 nm"}}) {
+    const fs::path out = scratch("selection");
+    const auto r = run("compare " + config + " " + c.flags + " --out " + out.string());
+    INFO(c.flags << ": " << r.output);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.output, Catch::Contains(c.expect));
+    CHECK_FALSE(fs::exists(out));
+  }
+}
+
 TEST_CASE("plumage compare: config errors name file:line and field, nothing is written", "[cli][compare]") {
   const fs::path dir = scratch("errors");
   fs::create_directories(dir);
@@ -190,6 +210,9 @@ TEST_CASE("plumage compare: config errors name file:line and field, nothing is w
       {"bad_reference.yaml", "reference: nope\nmethods:\n  - {name: a, solver: approximate}\n", ":6:"},
       {"bad_solver.yaml", "methods:\n  - {name: a, solver: {type: approximat}}\n", "approximate"},
       {"bad_option.yaml", "methods:\n  - {name: a, solver: {type: approximate, currents: both}}\n", "currents"},
+      // Recording the solver section for the times CSV must not mark its keys as read.
+      {"unknown_option.yaml", "methods:\n  - {name: a, solver: {type: approximate, curents: reflected}}\n",
+       "unknown key 'curents' (did you mean 'currents'?)"},
       {"duplicate.yaml", "methods:\n  - {name: a, solver: approximate}\n  - {name: a, solver: approximate}\n", ":8:"},
       {"bad_incident.yaml", "methods:\n  - {name: a, solver: approximate}\n", ":5:"},
       {"bad_override.yaml", "structure_overrides: {outline.thikness_um: 3}\nmethods:\n  - {name: a, solver: approximate}\n",

@@ -23,7 +23,7 @@ struct LadderPoint {
   std::string case_name;  // what was computed, e.g. "keratin cylinder r=250nm, 550nm"
   std::string setting;    // the rung, e.g. "ppw=16"
   double fidelity = 0.0;  // the rung's numeric knob (ppw, spp, periods, ...), for ordering
-  std::string reference;  // e.g. "exact cylinder series (tests/oracles)"
+  std::string reference;  // e.g. "exact cylinder series (plugins/bem/reference)"
   std::string metric;     // e.g. "rel. L2 of |E|^2 over 360 directions"
   double error = 0.0;     // against the reference, in `metric`
   double wall_s = 0.0;    // of this rung alone (the reference's cost excluded)

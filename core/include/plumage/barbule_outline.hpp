@@ -1,34 +1,26 @@
 // The outer outline of a barbule cross section: rough top surface and bottom surface (spec
-// geometry-and-brdf §1.1(b)–(c), §1.3). Shared by the structure generators; read from the
-// `outline:` map of a `structure:` section:
+// geometry-and-brdf §1.1(b)–(c), §1.3). Shared by the structure generators, which read it from
+// the `outline:` map of their `structure:` section with outline_table() (its rows are the docs:
+// `plumage plugins describe layered_barbule`, docs/parameters.md), e.g.
 //
 //   outline:
-//     shape: pillow              # elliptic_arc | pillow | flat
-//     width_um: 25               # x-extent of the top
-//     thickness_um: 4            # T: distance of the bottom below the top
-//     spacing_nm: 30             # vertex spacing along the top (arc length)
-//     edge_slope_deg: [18, 30]   # elliptic_arc: edge slope angle β ~ U[range]
-//     cap_ratio: [2, 3]          # pillow: shoulder length / half thickness ~ U[range]
-//     shoulder_end: 0.95         # pillow: the top stops at this fraction of the cap's half-axis
-//     corner_um: 1.0             # flat: rounded corner zone at each end
-//     corner_angle_deg: 30       # flat: the corner arc turns by this angle
-//     interior_shoulder: 0.5     # pillow: fraction of the shoulder usable by interior structures
-//     roughness: {correlation_um: 1.5, range_um: [-0.3, 0.3], permute: false}
-//     bottom:
-//       mode: mirror             # mirror (pillow) | arc (new elliptic arc) | parallel (top − T)
-//       slope_factor: 0.9        # arc: edge slope tan β' = factor · tan β
-//       width_fraction: 0.9      # arc: x-extent of the bottom / width
-//       roughness: {correlation_um: 0.7, range_um: [-0.07, 0.07], permute: false}
+//     shape: pillow
+//     width_um: 25
+//     thickness_um: 4
+//     roughness: {correlation_um: 1.5, range_um: [-0.3, 0.3]}
+//     bottom: {mode: mirror, roughness: {correlation_um: 0.7, range_um: [-0.07, 0.07]}}
 //
 // Random draws: sub-streams "outline.shape", "outline.top", "outline.bottom" of the instance seed.
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "plumage/cross_section.hpp"
 #include "plumage/geometry.hpp"
+#include "plumage/param_table.hpp"
 #include "plumage/params.hpp"
 #include "plumage/plugin.hpp"
 
@@ -39,11 +31,19 @@ struct RoughnessSpec {
   bool permute = false;
 };
 
+struct BottomSpec {
+  enum class Mode { mirror, arc, parallel };
+  std::optional<Mode> mode;  // absent: by the top's shape (bottom_mode)
+  double slope_factor = 0.9;
+  double width_fraction = 0.9;
+  RoughnessSpec roughness;  // default: smooth
+};
+
 struct OutlineSpec {
   enum class Shape { elliptic_arc, pillow, flat } shape = Shape::pillow;
-  enum class Bottom { mirror, arc, parallel } bottom = Bottom::mirror;
   double width_nm = 20000;
   double thickness_nm = 4000;
+  bool thickness_given = false;  // thickness_um was in the file
   double spacing_nm = 30;
   std::pair<double, double> edge_slope_deg{18.0, 30.0};
   std::pair<double, double> cap_ratio{2.0, 3.0};
@@ -52,18 +52,22 @@ struct OutlineSpec {
   double corner_angle_deg = 30;
   double interior_shoulder = 0.5;
   RoughnessSpec roughness;
-  double bottom_slope_factor = 0.9;
-  double bottom_width_fraction = 0.9;
-  RoughnessSpec bottom_roughness{{1000.0, 0.0, 0.0}, false};
+  BottomSpec bottom;
 };
 
+// The bottom's mode: as given, else mirror under a pillow top, arc under an elliptic arc,
+// parallel under a flat top.
+BottomSpec::Mode bottom_mode(const OutlineSpec& spec);
+
+// The parameters of `{correlation_um, range_um, permute}` (a rough profile in µm).
+const ParamTable<RoughnessSpec>& roughness_table();
+// The parameters of the `outline:` map. Read it with parse_outline_spec, which adds the checks
+// that involve several values.
+const ParamTable<OutlineSpec>& outline_table();
+
 // `thickness_required`: false when the generator computes T itself (then thickness_um is
-// optional and ignored unless given).
+// optional and ignored unless given). Throws ConfigError naming the field.
 OutlineSpec parse_outline_spec(const ParamView& node, bool thickness_required = true);
-// Reads {correlation_um, range_um, permute} (range inverted or correlation ≤ 0: error).
-RoughnessSpec parse_roughness(const ParamView& node);
-// Rows for a plug-in's parameter table ("outline.width_um", ...).
-std::vector<ParamSpec> outline_param_table();
 
 struct Outline {
   Polyline top;

@@ -6,10 +6,12 @@
 // so the command names no backend.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <string>
 #include <string_view>
 
+#include "plumage/local_reflection.hpp"
 #include "plumage/plugin.hpp"
 
 namespace plumage {
@@ -21,6 +23,10 @@ class Benchmark : public PluginObject {
   struct Options {
     std::string command;                             // as typed, for the record's "command" column
     std::function<void(std::string_view)> progress;  // status lines while it runs; may be empty
+    std::filesystem::path record;  // where the report will be recorded (empty: nowhere), for relative links
+    // How the preparation step of a benchmarked species may run (the command's --tables); done
+    // before anything is timed.
+    PreparationOptions preparation;
   };
   struct Report {
     std::string id;        // its section in docs/benchmarks.md, e.g. "bem"

@@ -42,7 +42,7 @@ struct PreparationOptions {
   // shortcut: the model raises a warning, so every file made with it says so); never: refuse.
   enum class Tables { build, preview, never };
   Tables tables = Tables::build;
-  // (work done, total work, what); may be empty.
+  // (work done, total work, what); total 0: a status line (what is about to be done). May be empty.
   std::function<void(std::size_t done, std::size_t total, std::string_view what)> progress;
 };
 

@@ -47,6 +47,32 @@ std::string format_param_number(double value);
 std::string format_param_interval(std::pair<double, double> value);
 std::string format_param_numbers(const std::vector<double>& values);
 
+// A field adaptor that stores the value read times `factor`, for a parameter given in one unit and
+// kept in another (a length in µm kept in nm): into one number, or into the two ends of an interval.
+//   .number("width_um", scaled(&Spec::width_nm, 1000.0), "um", required, Limits::positive(), "...")
+struct Scaled {
+  double* first;
+  double* second;  // the interval's upper end; null for a number
+  double factor;
+  Scaled& operator=(double value) {
+    *first = factor * value;
+    return *this;
+  }
+  Scaled& operator=(const std::pair<double, double>& value) {
+    *first = factor * value.first;
+    *second = factor * value.second;
+    return *this;
+  }
+};
+template <class T>
+auto scaled(double T::*member, double factor) {
+  return [member, factor](T& o) { return Scaled{&(o.*member), nullptr, factor}; };
+}
+template <class T>
+auto scaled(std::pair<double, double> T::*member, double factor) {
+  return [member, factor](T& o) { return Scaled{&(o.*member).first, &(o.*member).second, factor}; };
+}
+
 template <class T>
 class ParamTable {
  public:

@@ -28,21 +28,23 @@ class PluginObject {
 // One row of a parameter table (param_table.hpp builds them from the declarations), printed by
 // `plumage plugins describe <type>` and docs/parameters.md.
 struct ParamSpec {
-  std::string name;           // dotted for nested maps: "outline.width_um"
-  std::string type;           // number, integer, text, bool, choice, interval, list, map, material...
-  std::string unit;           // nm, um, deg, 1 ... ("-" when dimensionless)
-  std::string default_value;  // "required" when there is no default
-  std::string meaning;
-  std::string range;          // "> 0", "in [0, 1]", "dense | gmres"; empty when unbounded
-  std::string condition;      // when the parameter applies ("model: films"); empty: always
+  std::string name{};           // dotted for nested maps: "outline.width_um"
+  std::string type{};           // number, integer, text, bool, choice, interval, list, map, material...
+  std::string unit{};           // nm, um, deg, 1 ... ("-" when dimensionless)
+  std::string default_value{};  // "required" when there is no default
+  std::string meaning{};
+  std::string range{};          // "> 0", "in [0, 1]", "dense | gmres"; empty when unbounded
+  std::string condition{};      // when the parameter applies ("model: films"); empty: always
 };
 
+// Default member initialisers so that registrations name only what they set (designated
+// initialisers without `.kind`, which Registrar::add fills in).
 struct PluginInfo {
-  std::string kind;     // filled from the interface by Registrar::add
-  std::string type;     // the name a config uses, e.g. "multilayer"
-  std::string version;  // the plug-in's own version
-  std::string summary;  // one line
-  std::vector<ParamSpec> params;
+  std::string kind{};     // filled from the interface by Registrar::add
+  std::string type{};     // the name a config uses, e.g. "multilayer"
+  std::string version{};  // the plug-in's own version
+  std::string summary{};  // one line
+  std::vector<ParamSpec> params{};
 };
 
 // What a factory may need besides its parameters.

@@ -69,6 +69,15 @@ SpeciesConfig load_species_config(const std::filesystem::path& file, const Plugi
 SpeciesConfig load_species_config(const ConfigDocument& doc, const PluginRegistry& registry,
                                   const std::string& variant = "");
 
+// A barbule segment of a chosen width (benchmarks and accuracy ladders): the species file with
+// structure.outline.width_um = width_um and, where the file sets it, structure.outline.corner_um =
+// min(1, width_um/10) (narrow segments keep their corners inside the outline), derived as
+// yaml-cpp nodes (ConfigDocument::derive) before the variant is merged, then loaded. Both values
+// are written as std::to_string writes them (6 decimals), so a segment's geometry is the one its
+// benchmark has always measured. Throws ConfigError if the file has no structure.outline.width_um.
+SpeciesConfig load_species_segment(const std::filesystem::path& file, double width_um, const PluginRegistry& registry,
+                                   const std::string& variant = "");
+
 // The explicit preparation step (issue 22): does every model's pending one-time work (a crystal
 // reflection table to build or load) with progress, before any simulation. Idempotent.
 void prepare_species(const SpeciesConfig& config, const PreparationOptions& options);

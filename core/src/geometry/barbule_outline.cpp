@@ -12,93 +12,123 @@
 
 namespace plumage {
 
-RoughnessSpec parse_roughness(const ParamView& node) {
-  RoughnessSpec r;
-  r.rough.correlation_nm = 1000.0 * node.number("correlation_um", Limits::positive());
-  const auto [lo, hi] = node.interval("range_um");
-  r.rough.lo_nm = 1000.0 * lo;
-  r.rough.hi_nm = 1000.0 * hi;
-  r.permute = node.boolean_or("permute", false);
-  return r;
+namespace {
+
+using Shape = OutlineSpec::Shape;
+
+// thickness_um is optional in the table (a generator that computes T may omit it): given, it sets
+// T and marks it given (an optional_number field: reset() keeps the default).
+struct GivenThickness {
+  OutlineSpec& spec;
+  void reset() {}
+  GivenThickness& operator=(double thickness_um) {
+    spec.thickness_nm = 1000.0 * thickness_um;
+    spec.thickness_given = true;
+    return *this;
+  }
+};
+
+bool is(const OutlineSpec& s, Shape shape) { return s.shape == shape; }
+
+const ParamTable<BottomSpec>& bottom_table() {
+  using M = BottomSpec::Mode;
+  static const auto table =
+      ParamTable<BottomSpec>{}
+          .choice("mode", &BottomSpec::mode,
+                  std::vector<std::pair<std::string_view, M>>{{"mirror", M::mirror}, {"arc", M::arc}, {"parallel", M::parallel}},
+                  required,
+                  "mirror: the top's base shape reflected (pillow) | arc: a new elliptic arc (elliptic_arc) | "
+                  "parallel: the rough top moved down by T (flat)")
+          .default_text("by shape")
+          .number("slope_factor", &BottomSpec::slope_factor, "1", 0.9, Limits::positive(),
+                  "arc: edge slope tan(beta') = factor * tan(beta)")
+          .number("width_fraction", &BottomSpec::width_fraction, "1", 0.9, Limits{0.0, 1.0, true, false},
+                  "arc: x-extent of the bottom / width")
+          .section("roughness", &BottomSpec::roughness, roughness_table(), "roughness of the bottom (default: smooth)");
+  return table;
+}
+
+}  // namespace
+
+const ParamTable<RoughnessSpec>& roughness_table() {
+  static const auto table =
+      ParamTable<RoughnessSpec>{}
+          .number("correlation_um", [](RoughnessSpec& r) { return Scaled{&r.rough.correlation_nm, nullptr, 1000.0}; },
+                  "um", required, Limits::positive(), "correlation length of the rough profile")
+          .interval("range_um", [](RoughnessSpec& r) { return Scaled{&r.rough.lo_nm, &r.rough.hi_nm, 1000.0}; }, "um",
+                    required, {}, "the profile spans exactly [lo, hi]")
+          .boolean("permute", &RoughnessSpec::permute, false, "permute the profile's values (keeps their distribution)");
+  return table;
+}
+
+const ParamTable<OutlineSpec>& outline_table() {
+  static const auto table =
+      ParamTable<OutlineSpec>{}
+          .choice("shape", &OutlineSpec::shape,
+                  std::vector<std::pair<std::string_view, Shape>>{
+                      {"elliptic_arc", Shape::elliptic_arc}, {"pillow", Shape::pillow}, {"flat", Shape::flat}},
+                  required,
+                  "elliptic_arc | pillow (flat top, rounded shoulders) | flat (rounded corners)")
+          .number("width_um", scaled(&OutlineSpec::width_nm, 1000.0), "um", required, Limits::positive(),
+                  "x-extent of the top surface")
+          .optional_number("thickness_um", [](OutlineSpec& s) { return GivenThickness{s}; }, "um",
+                           "required (unless the generator computes T)", Limits::positive(), "T: distance of the bottom below the top")
+          .number("spacing_nm", &OutlineSpec::spacing_nm, "nm", 30.0, Limits::positive(),
+                  "vertex spacing along the top (arc length), below a tenth of the width")
+          .interval("edge_slope_deg", &OutlineSpec::edge_slope_deg, "deg", required, Limits{0.0, 80.0, true, false},
+                    "edge slope angle beta ~ U[range]")
+          .only_if([](const OutlineSpec& s) { return is(s, Shape::elliptic_arc); }, "shape: elliptic_arc")
+          .interval("cap_ratio", &OutlineSpec::cap_ratio, "1", {2.0, 3.0}, Limits::positive(),
+                    "shoulder length / half thickness ~ U[range]")
+          .only_if([](const OutlineSpec& s) { return is(s, Shape::pillow); }, "shape: pillow")
+          .number("shoulder_end", &OutlineSpec::shoulder_end, "1", 0.95, Limits{0.0, 1.0, true, true},
+                  "the top stops at this fraction of the cap's half-axis")
+          .only_if([](const OutlineSpec& s) { return is(s, Shape::pillow); }, "shape: pillow")
+          .number("interior_shoulder", &OutlineSpec::interior_shoulder, "1", 0.5, Limits::unit_interval(),
+                  "fraction of the shoulder usable by interior structures")
+          .only_if([](const OutlineSpec& s) { return is(s, Shape::pillow); }, "shape: pillow")
+          .number("corner_um", scaled(&OutlineSpec::corner_nm, 1000.0), "um", 1.0, Limits::non_negative(),
+                  "rounded corner zone at each end")
+          .only_if([](const OutlineSpec& s) { return is(s, Shape::flat); }, "shape: flat")
+          .number("corner_angle_deg", &OutlineSpec::corner_angle_deg, "deg", 30.0, Limits::closed(0.0, 80.0),
+                  "the corner arc turns by this angle")
+          .only_if([](const OutlineSpec& s) { return is(s, Shape::flat); }, "shape: flat")
+          .section("roughness", &OutlineSpec::roughness, roughness_table(), "rough profile added to the top", true)
+          .section("bottom", &OutlineSpec::bottom, bottom_table(), "the bottom surface");
+  return table;
+}
+
+BottomSpec::Mode bottom_mode(const OutlineSpec& s) {
+  if (s.bottom.mode) return *s.bottom.mode;
+  return s.shape == Shape::pillow ? BottomSpec::Mode::mirror
+         : s.shape == Shape::elliptic_arc ? BottomSpec::Mode::arc
+                                          : BottomSpec::Mode::parallel;
 }
 
 OutlineSpec parse_outline_spec(const ParamView& node, bool thickness_required) {
-  OutlineSpec s;
-  static constexpr std::array<std::string_view, 3> shapes{"elliptic_arc", "pillow", "flat"};
-  const std::string shape = node.choice("shape", shapes);
-  s.shape = shape == "elliptic_arc" ? OutlineSpec::Shape::elliptic_arc
-            : shape == "pillow"     ? OutlineSpec::Shape::pillow
-                                    : OutlineSpec::Shape::flat;
-  s.width_nm = 1000.0 * node.number("width_um", Limits::positive());
-  if (thickness_required || node.has("thickness_um")) {
-    s.thickness_nm = 1000.0 * node.number("thickness_um", Limits::positive());
-  }
-  s.spacing_nm = node.number_or("spacing_nm", 30.0, Limits::positive());
+  const OutlineSpec s = outline_table().read(node);
+  if (thickness_required && !s.thickness_given) node.fail("thickness_um", "missing required key 'thickness_um'");
   if (s.spacing_nm > s.width_nm / 10.0) node.fail("spacing_nm", "spacing must be below a tenth of the width");
-  if (s.shape == OutlineSpec::Shape::elliptic_arc) {
-    s.edge_slope_deg = node.interval("edge_slope_deg", Limits{0.0, 80.0, true, false});
+  if (s.shape == Shape::pillow && s.cap_ratio.second * 0.5 * s.thickness_nm >= 0.5 * s.width_nm) {
+    node.fail("cap_ratio", "the shoulders would be longer than half the width");
   }
-  if (s.shape == OutlineSpec::Shape::pillow) {
-    if (node.has("cap_ratio")) s.cap_ratio = node.interval("cap_ratio", Limits::positive());
-    s.shoulder_end = node.number_or("shoulder_end", 0.95, Limits{0.0, 1.0, true, true});
-    s.interior_shoulder = node.number_or("interior_shoulder", 0.5, Limits::unit_interval());
-    if (s.cap_ratio.second * 0.5 * s.thickness_nm >= 0.5 * s.width_nm) {
-      node.fail("cap_ratio", "the shoulders would be longer than half the width");
+  if (s.shape == Shape::flat && 2.0 * s.corner_nm >= s.width_nm) node.fail("corner_um", "corners wider than half the width");
+  if (s.bottom.mode) {
+    const ParamView b = node.child("bottom");
+    if (*s.bottom.mode == BottomSpec::Mode::arc && s.shape != Shape::elliptic_arc) {
+      b.fail("mode", "an arc bottom goes with an elliptic_arc top");
     }
-  }
-  if (s.shape == OutlineSpec::Shape::flat) {
-    s.corner_nm = 1000.0 * node.number_or("corner_um", 1.0, Limits::non_negative());
-    s.corner_angle_deg = node.number_or("corner_angle_deg", 30.0, Limits{0.0, 80.0, false, false});
-    if (2.0 * s.corner_nm >= s.width_nm) node.fail("corner_um", "corners wider than half the width");
-  }
-  s.roughness = parse_roughness(node.child("roughness"));
-  static constexpr std::array<std::string_view, 3> modes{"mirror", "arc", "parallel"};
-  if (auto b = node.child_if("bottom")) {
-    const std::string mode = b->choice("mode", modes);
-    s.bottom = mode == "mirror" ? OutlineSpec::Bottom::mirror
-               : mode == "arc"  ? OutlineSpec::Bottom::arc
-                                : OutlineSpec::Bottom::parallel;
-    s.bottom_slope_factor = b->number_or("slope_factor", 0.9, Limits::positive());
-    s.bottom_width_fraction = b->number_or("width_fraction", 0.9, Limits{0.0, 1.0, true, false});
-    if (b->has("roughness")) s.bottom_roughness = parse_roughness(b->child("roughness"));
-    if (s.bottom == OutlineSpec::Bottom::arc && s.shape != OutlineSpec::Shape::elliptic_arc) {
-      b->fail("mode", "an arc bottom goes with an elliptic_arc top");
+    if (*s.bottom.mode == BottomSpec::Mode::mirror && s.shape != Shape::pillow) {
+      b.fail("mode", "a mirror bottom goes with a pillow top");
     }
-    if (s.bottom == OutlineSpec::Bottom::mirror && s.shape != OutlineSpec::Shape::pillow) {
-      b->fail("mode", "a mirror bottom goes with a pillow top");
-    }
-  } else {
-    s.bottom = s.shape == OutlineSpec::Shape::pillow         ? OutlineSpec::Bottom::mirror
-               : s.shape == OutlineSpec::Shape::elliptic_arc ? OutlineSpec::Bottom::arc
-                                                             : OutlineSpec::Bottom::parallel;
   }
   // The rough top must not reach the bottom.
   const double relief = (s.roughness.rough.hi_nm - s.roughness.rough.lo_nm) +
-                        (s.bottom_roughness.rough.hi_nm - s.bottom_roughness.rough.lo_nm);
-  if ((thickness_required || node.has("thickness_um")) && relief >= s.thickness_nm) {
+                        (s.bottom.roughness.rough.hi_nm - s.bottom.roughness.rough.lo_nm);
+  if (s.thickness_given && relief >= s.thickness_nm) {
     node.fail("thickness_um", "thinner than the roughness relief of top and bottom");
   }
   return s;
-}
-
-std::vector<ParamSpec> outline_param_table() {
-  return {
-      {"outline.shape", "text", "-", "required", "elliptic_arc, pillow or flat top"},
-      {"outline.width_um", "number", "um", "required", "x-extent of the top surface"},
-      {"outline.thickness_um", "number", "um", "required*", "distance of the bottom below the top"},
-      {"outline.spacing_nm", "number", "nm", "30", "vertex spacing along the top"},
-      {"outline.edge_slope_deg", "interval", "deg", "required (arc)", "edge slope angle ~ U[range]"},
-      {"outline.cap_ratio", "interval", "-", "[2, 3]", "pillow: shoulder length / half thickness"},
-      {"outline.shoulder_end", "number", "-", "0.95", "pillow: end of the top on the cap (0-1)"},
-      {"outline.interior_shoulder", "number", "-", "0.5", "pillow: shoulder fraction open to interior"},
-      {"outline.corner_um", "number", "um", "1.0", "flat: rounded corner zone at each end"},
-      {"outline.corner_angle_deg", "number", "deg", "30", "flat: turn of the corner arc"},
-      {"outline.roughness", "map", "-", "required", "{correlation_um, range_um, permute} of the top"},
-      {"outline.bottom.mode", "text", "-", "by shape", "mirror, arc or parallel"},
-      {"outline.bottom.slope_factor", "number", "-", "0.9", "arc: tan(bottom slope)/tan(beta)"},
-      {"outline.bottom.width_fraction", "number", "-", "0.9", "arc: bottom width / width"},
-      {"outline.bottom.roughness", "map", "-", "none", "roughness of the bottom"},
-  };
 }
 
 namespace {
@@ -132,7 +162,7 @@ Outline make_outline(const OutlineSpec& s, std::uint64_t seed, double thickness_
     case OutlineSpec::Shape::elliptic_arc: {
       o.edge_slope_rad = deg_to_rad(shape_rng.uniform(s.edge_slope_deg.first, s.edge_slope_deg.second));
       base = elliptic_arc(W, o.edge_slope_rad, shape_rng.uniform(), s.spacing_nm);
-      o.interior_half_width = half * s.bottom_width_fraction;
+      o.interior_half_width = half * s.bottom.width_fraction;
       break;
     }
     case OutlineSpec::Shape::pillow: {
@@ -179,28 +209,29 @@ Outline make_outline(const OutlineSpec& s, std::uint64_t seed, double thickness_
   mean /= static_cast<double>(o.top.size());
   for (Vec2& p : o.top) p.z -= mean;
 
-  switch (s.bottom) {
-    case OutlineSpec::Bottom::mirror:
-    case OutlineSpec::Bottom::parallel: {
-      const auto rb = rough_on(s.bottom_roughness, bottom_rng);
+  const BottomSpec::Mode mode = bottom_mode(s);
+  switch (mode) {
+    case BottomSpec::Mode::mirror:
+    case BottomSpec::Mode::parallel: {
+      const auto rb = rough_on(s.bottom.roughness, bottom_rng);
       o.bottom.resize(base.size());
       for (std::size_t i = 0; i < base.size(); ++i) {
         // mirror: the base shape reflected about z = −T/2; parallel: the rough top moved down by
         // T, with the corners rounded the other way.
-        const double z = s.bottom == OutlineSpec::Bottom::mirror
+        const double z = mode == BottomSpec::Mode::mirror
                              ? -T - base[i].z
                              : o.top_roughness[i] - T - base[i].z;
         o.bottom[i] = {xs[i], z + rb[i] - mean};
       }
       break;
     }
-    case OutlineSpec::Bottom::arc: {
-      const double beta = std::atan(s.bottom_slope_factor * std::tan(o.edge_slope_rad));
-      Polyline arc = elliptic_arc(W * s.bottom_width_fraction, beta, shape_rng.uniform(), s.spacing_nm);
+    case BottomSpec::Mode::arc: {
+      const double beta = std::atan(s.bottom.slope_factor * std::tan(o.edge_slope_rad));
+      Polyline arc = elliptic_arc(W * s.bottom.width_fraction, beta, shape_rng.uniform(), s.spacing_nm);
       const auto bx = xs_of(arc);
-      const double bh = 0.5 * W * s.bottom_width_fraction;
-      const auto rb = rough_profile(bx, -bh, bh, s.bottom_roughness.rough, bottom_rng,
-                                    s.bottom_roughness.permute);
+      const double bh = 0.5 * W * s.bottom.width_fraction;
+      const auto rb = rough_profile(bx, -bh, bh, s.bottom.roughness.rough, bottom_rng,
+                                    s.bottom.roughness.permute);
       double bm = 0.0;
       for (std::size_t i = 0; i < arc.size(); ++i) {
         arc[i].z += rb[i];

@@ -1,21 +1,6 @@
 // structure_generator "validation_shape" (built into core): shapes with exact solutions for the
-// solvers' validation ladder (DESIGN §9, rungs 3–4), usable from configs like a species.
-//
-// | name        | type     | unit | default  | meaning                                                  |
-// |-------------|----------|------|----------|----------------------------------------------------------|
-// | shape       | text     | -    | required | circle, coated_circle or slab                            |
-// | radius_nm   | number   | nm   | required | circle, coated_circle: outer radius                      |
-// | material    | material | -    | keratin  | circle: the cylinder's material                          |
-// | coating_nm  | number   | nm   | required | coated_circle: coating thickness (< radius)              |
-// | core        | material | -    | melanin  | coated_circle: core material                             |
-// | coating     | material | -    | keratin  | coated_circle: coating material                          |
-// | width_um    | number   | um   | required | slab: width of the flat top                              |
-// | stack       | map      | -    | required | slab: layers (top → bottom) and substrate (air only)     |
-// | spacing_nm  | number   | nm   | 5 / 30   | vertex spacing on curves (circles 5, slab 30)            |
-// | radius_um   | number   | um   | flat     | slab: curved top, a circular arc of this radius (apex at |
-// |             |          |      |          | z = 0); interfaces are concentric arcs (> W/2 + depth)   |
-// | roughness   | map      | -    | none     | slab: {rms_nm, correlation_um, seed}: a Gaussian-        |
-// |             |          |      |          | correlated height profile added to every interface       |
+// solvers' validation ladder (DESIGN §9, rungs 3–4), usable from configs like a species. Its
+// parameters are declared once, in shape_params() (`plumage plugins describe validation_shape`).
 //
 // Every instance is identical (no randomness: a rough slab's profile is fixed by its `seed`).
 // Frame: circles centred at the origin, the top is the upper half circle; the slab's top is
@@ -28,11 +13,14 @@
 // Bit-identical geometry on every machine: no fused multiply-add contraction (-march=native
 // would otherwise decide per machine).
 #pragma GCC optimize("fp-contract=off")
-#include <array>
+#include <algorithm>
 #include <cmath>
+#include <vector>
+#include <optional>
 
 #include "plumage/builtin_plugins.hpp"
 #include "plumage/geometry.hpp"
+#include "plumage/param_table.hpp"
 #include "plumage/structure_generator.hpp"
 
 namespace plumage {
@@ -52,54 +40,141 @@ Polyline half_circle(double r, bool upper, double spacing) {
   return p;
 }
 
+enum class Shape { circle, coated_circle, slab };
+
+// Vertex spacing on curves when spacing_nm is not given.
+constexpr double kCircleSpacingNm = 5.0, kSlabSpacingNm = 30.0;
+
+struct Roughness {
+  double rms_nm;  // 0: none
+  double correlation_um;
+  std::uint64_t seed;
+};
+
+// The parameters as written; ValidationShape checks what one value implies for another.
+struct ShapeParams {
+  Shape shape;
+  double radius_nm;  // circles: outer radius
+  Material material;  // circle: the cylinder; coated_circle: the coating
+  double coating_nm;
+  Material core;
+  double width_um;
+  LayerProfile stack;
+  std::optional<double> spacing_nm;
+  std::optional<double> radius_um;  // slab: curved top
+  Roughness roughness;
+};
+
+const ParamTable<Roughness>& roughness_params() {
+  static const auto table =
+      ParamTable<Roughness>{}
+          .number("rms_nm", &Roughness::rms_nm, "nm", required, Limits::at_least(0.0), "rms height")
+          .number("correlation_um", &Roughness::correlation_um, "um", required, Limits::positive(),
+                  "correlation length (Gaussian spectrum: rms slope = rms_nm / correlation)")
+          .integer("seed", &Roughness::seed, "-", 1, Limits::at_least(0.0), "seed of the fixed profile");
+  return table;
+}
+
+// A material-valued parameter (materials.hpp) with its default.
+ParamTable<ShapeParams>& material_param(ParamTable<ShapeParams>& t, const char* name, Material ShapeParams::*field,
+                                        Material fallback, const char* fallback_name, std::string doc) {
+  return t.custom(
+      name, "material", "-", fallback_name, std::move(doc),
+      [name, field](const ParamView& p, ShapeParams& o) {
+        if (p.has(name)) o.*field = parse_material(p, name);
+      },
+      [field, fallback](ShapeParams& o) { o.*field = fallback; });
+}
+
+const ParamTable<ShapeParams>& shape_params() {
+  static const auto table = [] {
+    const auto is = [](std::vector<Shape> shapes) {
+      return [shapes](const ShapeParams& o) { return std::find(shapes.begin(), shapes.end(), o.shape) != shapes.end(); };
+    };
+    ParamTable<ShapeParams> t;
+    t.choice("shape", &ShapeParams::shape,
+             std::vector<std::pair<std::string_view, Shape>>{
+                 {"circle", Shape::circle}, {"coated_circle", Shape::coated_circle}, {"slab", Shape::slab}},
+             required,
+             "circle, coated circle or layered slab");
+    t.number("radius_nm", &ShapeParams::radius_nm, "nm", required, Limits::positive(), "outer radius")
+        .only_if(is({Shape::circle, Shape::coated_circle}), "shape: circle | coated_circle");
+    material_param(t, "material", &ShapeParams::material, Material::keratin(), "keratin", "the cylinder's material")
+        .only_if(is({Shape::circle}), "shape: circle");
+    t.number("coating_nm", &ShapeParams::coating_nm, "nm", required, Limits::positive(),
+             "coating thickness (< radius)")
+        .only_if(is({Shape::coated_circle}), "shape: coated_circle");
+    material_param(t, "core", &ShapeParams::core, Material::melanin(), "melanin", "core material")
+        .only_if(is({Shape::coated_circle}), "shape: coated_circle");
+    material_param(t, "coating", &ShapeParams::material, Material::keratin(), "keratin", "coating material")
+        .only_if(is({Shape::coated_circle}), "shape: coated_circle");
+    t.number("width_um", &ShapeParams::width_um, "um", required, Limits::positive(), "width of the top")
+        .only_if(is({Shape::slab}), "shape: slab");
+    t.custom("stack", "map", "-", "required", "layers (top to bottom) and substrate; ambient and substrate air",
+             [](const ParamView& p, ShapeParams& o) { o.stack = parse_layer_profile(p.child("stack")); })
+        .only_if(is({Shape::slab}), "shape: slab");
+    t.optional_number("spacing_nm", &ShapeParams::spacing_nm, "nm",
+                      format_param_number(kCircleSpacingNm) + " (circles), " + format_param_number(kSlabSpacingNm) +
+                          " (slab)",
+                      Limits::positive(), "vertex spacing on curves");
+    t.optional_number("radius_um", &ShapeParams::radius_um, "um", "flat", Limits::positive(),
+                      "curved top: a circular arc of this radius (apex at z = 0); interfaces are concentric arcs "
+                      "(radius > width/2 + stack depth)")
+        .only_if(is({Shape::slab}), "shape: slab");
+    t.section("roughness", &ShapeParams::roughness, roughness_params(),
+              "Gaussian-correlated height profile added to every interface")
+        .default_text("none")
+        .only_if(is({Shape::slab}), "shape: slab");
+    return t;
+  }();
+  return table;
+}
+
 class ValidationShape final : public StructureGenerator {
  public:
   explicit ValidationShape(const ParamView& p) {
-    static constexpr std::array<std::string_view, 3> shapes{"circle", "coated_circle", "slab"};
-    shape_ = p.choice("shape", shapes);
-    if (shape_ == "circle") {
-      radius_ = p.number("radius_nm", Limits::positive());
-      material_ = p.has("material") ? parse_material(p, "material") : Material::keratin();
-      spacing_ = p.number_or("spacing_nm", 5.0, Limits::positive());
-    } else if (shape_ == "coated_circle") {
-      radius_ = p.number("radius_nm", Limits::positive());
-      coating_nm_ = p.number("coating_nm", Limits::positive());
-      if (coating_nm_ >= radius_) p.fail("coating_nm", "the coating must be thinner than the radius");
-      core_ = p.has("core") ? parse_material(p, "core") : Material::melanin();
-      material_ = p.has("coating") ? parse_material(p, "coating") : Material::keratin();
-      spacing_ = p.number_or("spacing_nm", 5.0, Limits::positive());
+    const ShapeParams o = shape_params().read(p);
+    shape_ = o.shape;
+    if (shape_ != Shape::slab) {
+      radius_ = o.radius_nm;
+      material_ = o.material;
+      if (shape_ == Shape::coated_circle) {
+        coating_nm_ = o.coating_nm;
+        if (coating_nm_ >= radius_) p.fail("coating_nm", "the coating must be thinner than the radius");
+        core_ = o.core;
+      }
+      spacing_ = o.spacing_nm.value_or(kCircleSpacingNm);
     } else {
-      width_nm_ = 1000.0 * p.number("width_um", Limits::positive());
-      stack_ = parse_layer_profile(p.child("stack"));
+      width_nm_ = 1000.0 * o.width_um;
+      stack_ = o.stack;
       if (stack_.ambient.kind() != Material::Kind::air || stack_.substrate.kind() != Material::Kind::air) {
         p.fail("stack", "a slab stands in air: ambient and substrate must be air");
       }
-      spacing_ = p.number_or("spacing_nm", 30.0, Limits::positive());
+      spacing_ = o.spacing_nm.value_or(kSlabSpacingNm);
       double depth = 0.0;
       for (const auto& layer : stack_.layers) depth += layer.thickness_nm;
-      if (p.has("radius_um")) {
-        radius_nm_ = 1000.0 * p.number("radius_um", Limits::positive());
+      if (o.radius_um) {
+        radius_nm_ = 1000.0 * *o.radius_um;
         if (radius_nm_ - depth <= 0.5 * width_nm_) {
           p.fail("radius_um", "the deepest interface's arc must span the width: radius > width/2 + stack depth");
         }
       }
-      if (auto r = p.child_if("roughness")) {
-        rms_nm_ = r->number("rms_nm", Limits::at_least(0.0));
-        correlation_nm_ = 1000.0 * r->number("correlation_um", Limits::positive());
-        seed_ = static_cast<std::uint64_t>(r->integer_or("seed", 1, Limits::at_least(0.0)));
-      }
+      // Without `roughness`: rms 0, no profile (correlation and seed unused).
+      rms_nm_ = o.roughness.rms_nm;
+      correlation_nm_ = 1000.0 * o.roughness.correlation_um;
+      seed_ = o.roughness.seed;
     }
   }
 
   CrossSection generate(std::uint64_t index) const override {
     CrossSection cs = start("validation_shape", index);
     LayeredModel model;
-    if (shape_ == "circle" || shape_ == "coated_circle") {
+    if (shape_ != Shape::slab) {
       cs.top = half_circle(radius_, true, spacing_);
       cs.bottom = half_circle(radius_, false, spacing_);
       cs.regions.push_back({band_polygon(cs.top, cs.bottom), material_, RegionRole::body});
       model.below_top = material_;
-      if (shape_ == "coated_circle") {
+      if (shape_ == Shape::coated_circle) {
         const double ri = radius_ - coating_nm_;
         Polyline up = half_circle(ri, true, spacing_), down = half_circle(ri, false, spacing_);
         cs.regions.push_back({band_polygon(up, down), core_, RegionRole::core, 0});
@@ -158,7 +233,7 @@ class ValidationShape final : public StructureGenerator {
   }
 
  private:
-  std::string shape_;
+  Shape shape_ = Shape::circle;
   double radius_ = 0, coating_nm_ = 0, width_nm_ = 0, spacing_ = 5;
   double radius_nm_ = 0;  // slab: curved top (0: flat)
   double rms_nm_ = 0, correlation_nm_ = 1000;  // slab: roughness (rms 0: none)
@@ -171,25 +246,11 @@ class ValidationShape final : public StructureGenerator {
 
 void register_validation_shape(PluginRegistry& registry) {
   registry.builtin_registrar().add<StructureGenerator>(
-      {.kind = "",
-       .type = "validation_shape",
+      {.type = "validation_shape",
        .version = "1.1.0",
        .summary = "shapes with exact solutions (circle, coated circle, flat layered slab) and curved / rough "
                   "slabs for solver validation",
-       .params = {
-           {"shape", "text", "-", "required", "circle, coated_circle or slab"},
-           {"radius_nm", "number", "nm", "required", "circle, coated_circle: outer radius"},
-           {"material", "material", "-", "keratin", "circle: the cylinder's material"},
-           {"coating_nm", "number", "nm", "required", "coated_circle: coating thickness (< radius)"},
-           {"core", "material", "-", "melanin", "coated_circle: core material"},
-           {"coating", "material", "-", "keratin", "coated_circle: coating material"},
-           {"width_um", "number", "um", "required", "slab: width of the flat top"},
-           {"stack", "map", "-", "required", "slab: layers (top to bottom) and substrate (air)"},
-           {"spacing_nm", "number", "nm", "5 / 30", "vertex spacing (circles 5, slab 30)"},
-           {"radius_um", "number", "um", "flat", "slab: curved top, circular arc of this radius; concentric interfaces"},
-           {"roughness", "map", "-", "none",
-            "slab: {rms_nm, correlation_um, seed}: Gaussian-correlated height profile added to every interface"},
-       }},
+       .params = shape_params().specs()},
       [](const ParamView& p, const PluginContext&) { return std::make_unique<ValidationShape>(p); });
 }
 

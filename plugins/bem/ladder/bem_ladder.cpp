@@ -1,12 +1,12 @@
 // Accuracy ladder "bem" (issue 9): the BEM at growing points per wavelength on circular cylinders
-// against the exact series (tests/oracles/cylinder_series, written independently of the solver):
+// against the exact series (reference/cylinder_series, written independently of the solver):
 // relative L2 of the far-field intensity |𝓔|² over 360 directions, the worse polarization — the
 // metric of issue 6's acceptance (≤ 1e-3 at the production 30 ppw).
 #include <algorithm>
 #include <cstdio>
 #include <string>
 
-#include "bem_test_support.hpp"
+#include "cylinder_check.hpp"
 #include "plumage/accuracy_ladder.hpp"
 
 namespace plumage::bem {
@@ -23,7 +23,6 @@ struct CylinderCase {
 }  // namespace
 
 std::vector<LadderPoint> run_bem_ladder(const AccuracyLadder::Options& options) {
-  using namespace testing;
   const double lambda_nm = 550.0, theta = 30.0 * std::numbers::pi / 180.0, phi_i = 0.4;
   const std::vector<CylinderCase> cases = {
       {"keratin cylinder r=250nm, 550nm, theta 30deg", {250.0}, {Material::keratin()}, true},
@@ -74,7 +73,7 @@ std::vector<LadderPoint> run_bem_ladder(const AccuracyLadder::Options& options) 
       std::snprintf(setting, sizeof setting, "ppw=%g (N=%d)", ppw, result.sys->mesh.unknowns());
       pt.setting = setting;
       pt.fidelity = ppw;
-      pt.reference = "exact cylinder series (tests/oracles)";
+      pt.reference = "exact cylinder series (plugins/bem/reference)";
       pt.metric = "rel. L2 of |E|^2, 360 directions, worse pol";
       pt.error = error;
       pt.wall_s = cost.wall_s;

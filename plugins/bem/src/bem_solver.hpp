@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "assembly.hpp"
+#include "bem_options.hpp"
 #include "gmres.hpp"
 #include "hmatrix.hpp"
 #include "incident.hpp"
@@ -27,53 +28,6 @@
 #include "single_precision_lu.hpp"
 
 namespace plumage::bem {
-
-struct BemOptions {
-  enum class Incidence { beam, plane_wave };
-  // dense: LU; gmres: GMRES with the dense matrix as mat-vec; hmatrix: GMRES with the
-  // hierarchical matrix (exact sparse near field + ACA blocks, hmatrix.hpp) as mat-vec and the LU
-  // of (part of) its near field as preconditioner — the solver for large barbules.
-  enum class Method { dense, gmres, hmatrix };
-  double points_per_wavelength = 30.0;  // h ≤ λ/(|n| ppw) on both sides of every interface
-  // Axial currents get separate half tents at corners turning by this much or more (mesh.hpp;
-  // NOTES.md §6.2: shared tents through 90° corners gave error spikes of 1e-2 on blocks).
-  double corner_split_deg = 30.0;
-  Incidence incidence = Incidence::beam;
-  Method method = Method::dense;
-  double window_fraction = 0.25;
-  // Dense LU stores N² complex numbers: refuse larger systems (16 GB at 31 600 unknowns) with a
-  // clear error instead of exhausting memory. The fast solver of issue 6 (Deliver 2) is not done.
-  int max_dense_unknowns = 20000;
-  // Method hmatrix with preconditioner dense_single stores N² complex<float> (8 N² bytes, plus the
-  // H-matrix): refused above this size (12.8 GB at 40 000) instead of exhausting memory.
-  int max_dense_single_unknowns = 40000;
-  double gmres_tolerance = 1e-8;  // relative residual (method gmres)
-  int gmres_restart = 300;
-  int gmres_max_iterations = 5000;
-  // GMRES preconditioner (NOTES.md §5): near_field = sparse LU of the entries coupling segments
-  // closer than near_field_factor·h (default); block_jacobi = LU of the diagonal blocks of
-  // preconditioner_group consecutive vertices; none.
-  enum class Preconditioner { none, block_jacobi, near_field };
-  Preconditioner preconditioner = Preconditioner::near_field;
-  double near_field_factor = 8.0;
-  int preconditioner_group = 16;
-  QuadratureOptions quadrature;
-  HMatrixOptions hmatrix;
-  // Right-hand sides after the first start GMRES from the residual-minimising combination of all
-  // earlier solutions (method gmres/hmatrix; NOTES.md §5).
-  bool warm_start = true;
-  // When set, one line of timings and sizes per (λ, θ_i) is appended to this file.
-  std::string log_file;
-  // Warnings (issue 9; thresholds measured, NOTES.md "Warnings (issue 9)"). bem.mesh_coarse: some
-  // segment has fewer points per wavelength (in the denser of its two media) than this — the
-  // far field's error on the validation cylinders passes 1e-2 relative L2 there (≤ 0: off).
-  double warn_min_ppw = 14.0;
-  // bem.near_touching: two boundary pieces that are not neighbours along the mesh come closer
-  // than this × their segment length. The far field was measured unaffected down to 1e-4
-  // (cylinders and a rod under a surface 0.001 nm apart on ~10 nm segments) and wrong by 1e-2 to
-  // 1e-1 for outlines that cross, so this flags contact and crossings, not closeness (≤ 0: off).
-  double warn_gap_ratio = 1e-5;
-};
 
 // The instance-only part: interfaces and the top-surface data of Φ_i.
 struct BemPrepared final : ScatteringSolver::Prepared {
@@ -92,10 +46,10 @@ struct System {
   Mesh mesh;
   std::vector<Medium> media;
   // method dense: Z is factorised in place (one N² matrix in memory); method gmres: Z is the
-  // mat-vec operator (dense for now).
+  // mat-vec operator and near_field its preconditioner; method hmatrix: hmatrix is the mat-vec
+  // operator and near_field or dense_single its preconditioner.
   Eigen::MatrixXcd Z;
   std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXcd>>> lu;
-  std::unique_ptr<BlockJacobi> block_jacobi;
   std::unique_ptr<NearFieldLU> near_field;
   std::unique_ptr<HMatrix> hmatrix;
   std::unique_ptr<SinglePrecisionLU> dense_single;

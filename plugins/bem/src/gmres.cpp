@@ -80,39 +80,6 @@ GmresResult gmres(const Op& A, const Op& M, const Eigen::VectorXcd& b, Eigen::Ve
   return res;
 }
 
-BlockJacobi::BlockJacobi(const Mesh& mesh, const Eigen::MatrixXcd& Z, int group) {
-  const int ngroups = (mesh.n_t + group - 1) / group;
-  blocks_.assign(ngroups, {});
-  for (int v = 0; v < mesh.n_t; ++v) {
-    blocks_[v / group].push_back(mesh.jt(v));
-    blocks_[v / group].push_back(mesh.mt(v));
-  }
-  for (int z = 0; z < mesh.n_z; ++z) {
-    const int v = mesh.z_vertex[z];
-    blocks_[v / group].push_back(mesh.jz(z));
-    blocks_[v / group].push_back(mesh.mz(z));
-  }
-  for (const auto& idx : blocks_) {
-    const int n = static_cast<int>(idx.size());
-    Eigen::MatrixXcd B(n, n);
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) B(i, j) = Z(idx[i], idx[j]);
-    }
-    lu_.emplace_back(B);
-  }
-}
-
-void BlockJacobi::apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const {
-  out.resize(in.size());
-  for (std::size_t b = 0; b < blocks_.size(); ++b) {
-    const auto& idx = blocks_[b];
-    Eigen::VectorXcd v(idx.size());
-    for (std::size_t i = 0; i < idx.size(); ++i) v[i] = in[idx[i]];
-    const Eigen::VectorXcd s = lu_[b].solve(v);
-    for (std::size_t i = 0; i < idx.size(); ++i) out[idx[i]] = s[i];
-  }
-}
-
 NearFieldLU::NearFieldLU(const Mesh& mesh, const Eigen::MatrixXcd& Z, double factor) {
   const auto n = static_cast<long>(Z.rows());
   std::unordered_set<long> seen;

@@ -1,5 +1,6 @@
-// Restarted GMRES(m) with right preconditioning for complex systems (issue 6 Deliver 2, first
-// step: the iterative solver; the mat-vec is still the dense matrix — see NOTES.md §5).
+// Restarted GMRES(m) with right preconditioning for complex systems (issue 6 Deliver 2), and the
+// near-field sparse-LU preconditioner. The mat-vec is an Op: the dense matrix (method gmres) or the
+// hierarchical matrix (method hmatrix, hmatrix.hpp; NOTES.md §5).
 #pragma once
 
 #include <Eigen/Dense>
@@ -26,18 +27,6 @@ struct GmresResult {
 GmresResult gmres(const Op& A, const Op& precondition, const Eigen::VectorXcd& b, Eigen::VectorXcd& x, double tol,
                   int restart, int max_iterations,
                   const std::function<void(int, double)>& progress = {});
-
-// Block-Jacobi preconditioner: the unknowns of `group` consecutive mesh vertices (all four
-// families) form one diagonal block of Z, inverted by LU.
-class BlockJacobi {
- public:
-  BlockJacobi(const Mesh& mesh, const Eigen::MatrixXcd& Z, int group);
-  void apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const;
-
- private:
-  std::vector<std::vector<int>> blocks_;
-  std::vector<Eigen::PartialPivLU<Eigen::MatrixXcd>> lu_;
-};
 
 // Near-field preconditioner: the entries of Z coupling segments closer than `factor`·max(h)
 // (the locally singular part of the operator), as a sparse matrix factorised by SparseLU.

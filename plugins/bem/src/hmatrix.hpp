@@ -78,6 +78,12 @@ class HMatrix {
     std::vector<LowRank> blocks;
   };
   double k0_ = 0, beta_ = 0;
+  void build_near_field(const Mesh& mesh, const std::vector<Medium>& media, const QuadratureOptions& q,
+                        const HMatrixOptions& options, const std::vector<ClusterTree>& trees,
+                        const std::vector<BlockPartition>& parts);
+  void compress_blocks(const Mesh& mesh, const std::vector<Medium>& media, const QuadratureOptions& q,
+                       const HMatrixOptions& options, const std::vector<ClusterTree>& trees,
+                       const std::vector<BlockPartition>& parts);
   void apply_block(const Domain& d, const LowRank& b, const Eigen::VectorXcd& xl, Eigen::VectorXcd& out) const;
   int n_ = 0;
   std::vector<Domain> domains_;

@@ -35,7 +35,10 @@ std::string region_label(const CrossSection& s, int r) {
 
 }  // namespace
 
-Geometry build_geometry(const CrossSection& section) {
+namespace {
+
+// Depth of each region in the parent tree (0: in air); checks the regions' order and outlines.
+std::vector<int> region_depths(const CrossSection& section) {
   const auto& regions = section.regions;
   const int nr = static_cast<int>(regions.size());
   if (nr == 0) throw Error("bem: cross section '" + section.label + "' has no regions");
@@ -47,9 +50,22 @@ Geometry build_geometry(const CrossSection& section) {
     depth[r] = p < 0 ? 0 : depth[p] + 1;
     if (regions[r].outline.size() < 3) throw Error("bem: " + region_label(section, r) + " has fewer than 3 vertices");
   }
+  return depth;
+}
 
-  // All vertices, bucketed on a grid, to split edges at vertices of other outlines that lie on
-  // them (a child whose side runs along part of its parent's side, as in layered slabs).
+// An elementary edge and its owners: (region, +1 if the region's outline runs from the smaller
+// to the larger key (region on the left of that direction), −1 otherwise).
+struct Owned {
+  Vec2 p, q;  // p has the smaller key
+  std::vector<std::pair<int, int>> owners;
+};
+using OwnedEdges = std::map<std::pair<Key, Key>, Owned>;
+
+// The outlines' edges split at vertices of other outlines that lie on them (a child whose side runs
+// along part of its parent's side, as in layered slabs), found through a grid of all vertices.
+OwnedEdges owned_edges(const CrossSection& section) {
+  const auto& regions = section.regions;
+  const int nr = static_cast<int>(regions.size());
   double total = 0.0;
   std::size_t count = 0;
   std::vector<Vec2> all;
@@ -67,13 +83,7 @@ Geometry build_geometry(const CrossSection& section) {
   };
   for (int i = 0; i < static_cast<int>(all.size()); ++i) grid[cell_of(all[i].x, all[i].z)].push_back(i);
 
-  // Owners of each elementary edge: (region, +1 if the region's outline runs from the smaller
-  // to the larger key (region on the left of that direction), −1 otherwise).
-  struct Owned {
-    Vec2 p, q;  // p has the smaller key
-    std::vector<std::pair<int, int>> owners;
-  };
-  std::map<std::pair<Key, Key>, Owned> edges;
+  OwnedEdges edges;
   for (int r = 0; r < nr; ++r) {
     const Polygon& poly = regions[r].outline;
     if (signed_area(poly) <= 0.0) throw Error("bem: " + region_label(section, r) + " is not counter-clockwise");
@@ -113,6 +123,16 @@ Geometry build_geometry(const CrossSection& section) {
       }
     }
   }
+  return edges;
+}
+
+}  // namespace
+
+Geometry build_geometry(const CrossSection& section) {
+  const auto& regions = section.regions;
+  const std::vector<int> depth = region_depths(section);
+  const int nr = static_cast<int>(regions.size());
+  const OwnedEdges edges = owned_edges(section);
 
   Geometry g;
   g.domain_material.push_back(Material::air());

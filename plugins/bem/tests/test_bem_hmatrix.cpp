@@ -4,11 +4,7 @@
 
 #include <catch2/catch.hpp>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <random>
-#include <regex>
-#include <sstream>
 
 #include "bem_test_support.hpp"
 #include "pair_integrals.hpp"
@@ -262,22 +258,11 @@ TEST_CASE("bem hmatrix: coated cylinder and keratin r = 1 um vs exact series thr
   cylinders_fast_path(true);
 }
 
-// Instance 0 of the hummingbird with the outline width set to 0.3 um (as `plumage bench bem`
-// builds its segments).
+// Instance 0 of the hummingbird with the outline width set to 0.3 um (load_species_segment, as
+// `plumage bench bem` builds its segments).
 static CrossSection hummingbird_segment() {
-  std::ifstream in(std::string(PLUMAGE_SOURCE_DIR) + "/configs/species/hummingbird.yaml");
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string yaml = text.str();
-  const auto outline = yaml.find("\n  outline:");
-  REQUIRE(outline != std::string::npos);
-  std::string tail = yaml.substr(outline);
-  tail = std::regex_replace(tail, std::regex("(\n    width_um:)[^\n]*"), "$1 0.3", std::regex_constants::format_first_only);
-  tail = std::regex_replace(tail, std::regex("(\n    corner_um:)[^\n]*"), "$1 0.03", std::regex_constants::format_first_only);
-  const auto path = std::filesystem::temp_directory_path() / "plumage-test-bem-hmatrix-segment.yaml";
-  std::ofstream(path) << yaml.substr(0, outline) << tail;
-  const auto cfg = load_species_config(path, plumage::testing::registry());
-  std::filesystem::remove(path);
+  const auto cfg = load_species_segment(std::string(PLUMAGE_SOURCE_DIR) + "/configs/species/hummingbird.yaml", 0.3,
+                                        plumage::testing::registry());
   return cfg.structure->generate(0);
 }
 

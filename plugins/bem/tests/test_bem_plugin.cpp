@@ -1,12 +1,16 @@
 // The "bem" plug-in through the registry, as a species config selects it (`solver: {type: bem}`):
 //  * a flat keratin film (validation_shape slab) under the Gaussian beam reproduces the multilayer
 //    plug-in's |r|² (spec §6.11 item 3), the beam's angular spectrum weighted exactly;
-//  * a keratin cylinder under a plane wave gives the 2D differential scattering width of the series.
+//  * a keratin cylinder under a plane wave gives the 2D differential scattering width of the series;
+//  * the plug-in documents the solver's parameter table and registers its benchmark, whose solver
+//    options go through that table.
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <filesystem>
 
 #include "bem_test_support.hpp"
+#include "plumage/benchmark.hpp"
+#include "plumage/config_document.hpp"
 #include "plumage/species_config.hpp"
 #include "plumage/structure_generator.hpp"
 #include "test_registry.hpp"
@@ -54,8 +58,8 @@ void check_slab(const std::string& name, const std::vector<double>& thetas_deg, 
   const auto prep = bem::prepare_geometry(cs);
   const DirectionSet dirs = pattern_directions(400);
   const double dphi = kPi / 400;
-  bem::BemOptions options;  // the beam as the config's solver section defines it
-  options.window_fraction = cfg.root.node("solver").number_or("window_fraction", 0.25);
+  // the beam as the config's solver section defines it
+  const bem::BemOptions options = bem::bem_options_table().read(cfg.root.node("solver"));
   for (double theta_deg : thetas_deg) {
     const double theta = deg_to_rad(theta_deg);
     std::vector<double> phis;
@@ -126,4 +130,39 @@ TEST_CASE("bem plug-in: cylinder config with plane-wave incidence gives the diff
                 pol + 1, std::sqrt(num / den));
     CHECK(std::sqrt(num / den) <= 1e-3);
   }
+}
+
+TEST_CASE("bem plug-in: the registry documents the solver's parameter table and makes its benchmark") {
+  const PluginRegistry& registry = plumage::testing::registry();
+  const auto* solver = registry.find(ScatteringSolver::plugin_kind, "bem");
+  REQUIRE(solver != nullptr);
+  const auto specs = bem::bem_options_table().specs();
+  REQUIRE(solver->info.params.size() == specs.size());
+  for (std::size_t k = 0; k < specs.size(); ++k) {
+    CHECK(solver->info.params[k].name == specs[k].name);
+    CHECK(solver->info.params[k].default_value == specs[k].default_value);
+    CHECK(solver->info.params[k].range == specs[k].range);
+  }
+  const auto* bench = registry.find(Benchmark::plugin_kind, "bem");
+  REQUIRE(bench != nullptr);
+  bool has_map = false;
+  for (const ParamSpec& p : bench->info.params) has_map |= p.name == "bem" && p.type == "map";
+  CHECK(has_map);
+  // Its solver options are the solver's: a wrong key or value fails when the benchmark is made,
+  // naming the parameter (nothing runs).
+  const auto error_of = [&](const std::string& yaml) -> std::string {
+    const ConfigDocument doc = ConfigDocument::parse(yaml, "command line");
+    try {
+      registry.create_named<Benchmark>("bem", doc.root(), registry.context());
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  CHECK_THAT(error_of("{bem: {ppw: '12'}}"),
+             Catch::Contains("unknown key 'ppw'") && Catch::Contains("points_per_wavelength"));
+  CHECK_THAT(error_of("{bem: {method: 'lu'}}"), Catch::Contains("method"));
+  CHECK_THAT(error_of("{bem: {log_file: 'x'}}"), Catch::Contains("log_file"));
+  CHECK_THAT(error_of("{width-um: [1]}"), Catch::Contains("width-um"));
+  CHECK(error_of("{width_um: [1], bem: {method: 'dense', points_per_wavelength: '12'}}") == "no error");
 }

@@ -1,5 +1,5 @@
 // BEM solver vs independent references (spec wave-simulation.md §6.11, issue 6 acceptance):
-// exact cylinder series (tests/oracles), optical theorem, Poynting flux, reciprocity, θ_i = 0
+// exact cylinder series (reference/), optical theorem, Poynting flux, reciprocity, θ_i = 0
 // decoupling. Tests tagged [validation] are the long ones (ctest label `validation`).
 #include <catch2/catch.hpp>
 #include <cstdio>

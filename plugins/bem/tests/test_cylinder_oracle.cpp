@@ -1,4 +1,4 @@
-// Tests of the cylinder series oracle (tests/oracles/cylinder_series).
+// Tests of the cylinder series oracle (reference/cylinder_series).
 #define CATCH_CONFIG_MAIN
 #include <catch2/catch.hpp>
 

@@ -1,10 +1,15 @@
-// structure_generator "layered_barbule" (barbule types 1–4). Parameter table: layered_barbule.cpp.
+// structure_generator "layered_barbule": barbules whose local structure is a layer stack (types
+// 1–4 of spec geometry-and-brdf §1.3). Every number comes from the YAML `structure:` section,
+// declared once in layered_table() (layered_barbule.cpp); `model:` selects the interior. The
+// outline (top and bottom surfaces) is core's barbule_outline.hpp.
 #pragma once
 
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "plumage/barbule_outline.hpp"
+#include "plumage/param_table.hpp"
 #include "plumage/structure_generator.hpp"
 
 namespace plumage::multilayer {
@@ -17,48 +22,58 @@ struct MixtureSpec {
   RoughnessSpec fraction;
 };
 
+struct Film {
+  Material material;
+  double thickness_nm = 0;
+};
+
+// The `structure:` section of a layered barbule, as read by layered_table().
+struct LayeredParams {
+  enum class Model { granule_gap, melanosome_rows, platelets, films };
+  Model model = Model::films;
+  OutlineSpec outline;
+  double cortex_nm = 0;
+  Material body = Material::keratin();
+  double arc_step_nm = 10;
+  // granule_gap (type 1): cortex | air gap | granules in air | lower cortex
+  RoughnessSpec gap;
+  MixtureSpec granules;
+  std::optional<double> lower_cortex_nm;  // absent: cortex_nm
+  // melanosome_rows (types 2–3)
+  double diameter_nm = 0, jitter = 0.2, row_spacing_nm = 0, neck_fraction = 1.0 / 3.0;
+  int rows = 1;
+  MixtureSpec core;
+  // platelets (type 4)
+  int layers = 0;
+  double first_layer_nm = 0, wall_nm = 0, bubble_nm = 0, blend = 0.2, spacer_nm = 0;
+  double membrane_nm = 0, platelet_nm = 0, bubble_height_jitter_nm = 10;
+  std::pair<double, double> bubble_jitter{0.95, 1.05}, spacer_jitter{0.95, 1.05};
+  std::pair<double, double> length_jitter{2.0 / 3.0, 4.0 / 3.0}, gap_jitter{2.0 / 3.0, 4.0 / 3.0};
+  std::pair<double, double> end_gap_nm{80.0, 120.0}, bubble_length_jitter{0.7, 1.3};
+  std::vector<double> first_spacers{0.9, 0.95}, coverage{0.85, 0.9};
+  // films (a worked example: conformal films under the cortex)
+  std::vector<Film> films;
+  double film_spacing_nm = 0;
+};
+
+// The generator's parameters, declared once: reading, defaults, ranges and docs.
+const ParamTable<LayeredParams>& layered_table();
+
 class LayeredBarbule final : public StructureGenerator {
  public:
   explicit LayeredBarbule(const ParamView& params);
   CrossSection generate(std::uint64_t instance_index) const override;
-  static std::vector<ParamSpec> param_table();
 
  private:
-  enum class Model { granule_gap, melanosome_rows, platelets, films };
-  struct Film {
-    Material material;
-    double thickness_nm;
-  };
+  using Model = LayeredParams::Model;
 
   void finish_outline(CrossSection& cs, Outline&& outline) const;
   void build_granule_gap(CrossSection& cs) const;
-  void build_rows(CrossSection& cs) const;
-  void build_platelets(CrossSection& cs) const;
+  void build_rows(CrossSection& cs) const;       // layered_rows.cpp
+  void build_platelets(CrossSection& cs) const;  // layered_platelets.cpp
   void build_films(CrossSection& cs) const;
 
-  Model model_ = Model::films;
-  OutlineSpec outline_;
-  double cortex_nm_ = 0;
-  Material body_ = Material::keratin();
-  double arc_step_ = 10;
-  // granule_gap
-  RoughnessSpec gap_;
-  MixtureSpec granules_;
-  double lower_cortex_nm_ = 0;
-  // melanosome_rows
-  double diameter_nm_ = 0, jitter_ = 0, row_spacing_nm_ = 0, neck_fraction_ = 1.0 / 3.0;
-  int rows_ = 1;
-  MixtureSpec core_;
-  // platelets
-  int layers_ = 0;
-  double first_layer_nm_ = 0, wall_nm_ = 0, bubble_nm_ = 0, blend_ = 0.2, spacer_nm_ = 0;
-  double membrane_nm_ = 0, platelet_nm_ = 0, bubble_height_jitter_nm_ = 0;
-  std::pair<double, double> bubble_jitter_, spacer_jitter_, length_jitter_, gap_jitter_;
-  std::pair<double, double> end_gap_nm_, bubble_length_jitter_;
-  std::vector<double> first_spacers_, coverage_;
-  // films
-  std::vector<Film> films_;
-  double film_spacing_nm_ = 0;
+  LayeredParams p_;
 };
 
 }  // namespace plumage::multilayer

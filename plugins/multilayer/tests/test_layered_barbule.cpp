@@ -9,6 +9,7 @@
 #include <map>
 #include <numeric>
 
+#include "plumage/config_document.hpp"
 #include "plumage/geometry.hpp"
 #include "plumage/species_config.hpp"
 #include "test_registry.hpp"
@@ -199,4 +200,44 @@ TEST_CASE("layered_barbule refuses inconsistent parameters at their line", "[lay
   ParamView none;
   CHECK_THROWS_WITH(registry().create_named<StructureGenerator>("layered_barbule", none, registry().context()),
                     Catch::Contains("model"));
+}
+
+// One declaration per parameter: the documented rows are the table that reads, with the shared
+// outline rows nested under `outline` and the model-specific rows conditional on the model.
+TEST_CASE("layered_barbule documents the parameters it reads", "[layered_barbule][config]") {
+  const auto* entry = registry().find("structure_generator", "layered_barbule");
+  REQUIRE(entry != nullptr);
+  std::map<std::string, ParamSpec> rows;
+  for (const ParamSpec& p : entry->info.params) rows[p.name] = p;
+  REQUIRE(rows.count("outline.width_um"));
+  CHECK(rows.at("outline.width_um").unit == "um");
+  CHECK(rows.at("outline.width_um").range == "> 0");
+  REQUIRE(rows.count("outline.bottom.roughness.correlation_um"));
+  CHECK(rows.at("outline.cap_ratio").condition == "shape: pillow");
+  CHECK(rows.at("layers").condition == "model: platelets");
+  CHECK(rows.at("layers").default_value == "required");
+  CHECK(rows.at("neck_fraction").default_value == "1/3");
+  CHECK(rows.at("end_gap_um").default_value == "[0.08, 0.12]");
+  REQUIRE(rows.count("films.thickness_nm"));
+  CHECK(rows.at("films.thickness_nm").condition == "model: films");
+  CHECK(rows.at("granules.fraction.range").range == "in [0, 1]");
+
+  const std::string films =
+      "generator: layered_barbule\nmodel: films\ncortex_nm: 200\nfilms: [{material: melanin, thickness_nm: 100}]\n"
+      "outline: {shape: pillow, width_um: 20, thickness_um: 3, roughness: {correlation_um: 1, range_um: [-0.1, 0.1]}}\n";
+  auto create = [](const std::string& yaml) {
+    const auto doc = ConfigDocument::parse(yaml, "films.yaml");
+    return registry().create<StructureGenerator>(doc.root(), "generator", registry().context());
+  };
+  REQUIRE_NOTHROW(create(films));
+  // A platelets parameter does not apply to films: an unknown key.
+  CHECK_THROWS_WITH(create(films + "wall_nm: 20\n"), Catch::Contains("films.yaml:6:") && Catch::Contains("wall_nm"));
+  // The outline's thickness is required except where the model computes it.
+  std::string thin = films;
+  thin.replace(thin.find(" thickness_um: 3,"), 17, "");
+  CHECK_THROWS_WITH(create(thin), Catch::Contains("missing required key 'thickness_um'"));
+  // Outline parameters of another shape are unknown keys too.
+  std::string arc = films;
+  arc.replace(arc.find("shape: pillow,"), 14, "shape: pillow, edge_slope_deg: [18, 30],");
+  CHECK_THROWS_WITH(create(arc), Catch::Contains("edge_slope_deg"));
 }

@@ -6,18 +6,7 @@
 // of hexagonal cells shifted by a_x/2), so the lattice follows the surface as in a real barbule.
 // Where the curvature of the top would squeeze two bodies closer than `min_gap_nm`, the later
 // one is left out (a lattice defect), so the exact model never overlaps.
-//
-// | name                   | type   | unit | default    | meaning                                              |
-// |------------------------|--------|------|------------|------------------------------------------------------|
-// | crystal                | path   | -    | required   | crystal cell file (configs/crystals/*.yaml), relative to the config |
-// | outline                | map    | -    | required   | top and bottom surfaces (core barbule_outline.hpp)   |
-// | body                   | material | -  | keratin    | material of the barbule body                         |
-// | regularity             | number | -    | 1          | mean regularity ρ in (0, 1]; 1: a perfect crystal    |
-// | regularity_correlation_um | number | um | 0.5       | correlation of the regularity profile (ρ < 1)        |
-// | regularity_half_range  | number | -    | 0.1        | regularity spans exactly [ρ − h, ρ + h] (ρ < 1)      |
-// | min_gap_nm             | number | nm   | 1          | smallest gap kept between bodies of the exact model  |
-// | rod_segments           | integer| -    | 24         | polygon vertices per rod                             |
-// | exact_lattice          | bool   | -    | true       | place rods and channels in the exact model           |
+// The parameters are declared once in crystal_barbule_table() below.
 // Bit-identical geometry on every machine: no fused multiply-add contraction.
 #pragma GCC optimize("fp-contract=off")
 #include "crystal_barbule.hpp"
@@ -67,27 +56,51 @@ class Occupancy {
 
 }  // namespace
 
+const ParamTable<CrystalBarbuleParams>& crystal_barbule_table() {
+  using P = CrystalBarbuleParams;
+  static const auto table =
+      ParamTable<P>{}
+          .text("crystal", &P::crystal, required, "crystal cell file (configs/crystals/*.yaml), relative to the config")
+          .custom("outline", "map", "-", "required", "top and bottom surfaces (core barbule_outline.hpp)",
+                  [](const ParamView& p, P& o) { o.outline = parse_outline_spec(p.child("outline")); })
+          .nested_specs(outline_table().specs())
+          .custom("body", "material", "-", "crystal host", "material of the barbule body",
+                  [](const ParamView& p, P& o) {
+                    if (p.has("body")) o.body = parse_material(p, "body");
+                  })
+          .number("regularity", &P::regularity, "1", 1.0, Limits{0.0, 1.0, true, false},
+                  "mean regularity rho in (0, 1]; 1: a perfect crystal")
+          .number("regularity_correlation_um", scaled(&P::regularity_correlation_nm, 1000.0), "um", 0.5,
+                  Limits::positive(), "correlation of the regularity profile (rho < 1)")
+          .number("regularity_half_range", &P::regularity_half_range, "1", 0.1, Limits::non_negative(),
+                  "the regularity spans exactly [rho - h, rho + h] (rho < 1)")
+          .number("min_gap_nm", &P::min_gap_nm, "nm", 1.0, Limits::non_negative(),
+                  "smallest gap kept between bodies of the exact model")
+          .integer("rod_segments", &P::rod_segments, "1", 24, Limits::closed(8, 256), "polygon vertices per rod")
+          .boolean("exact_lattice", &P::exact_lattice, true, "place rods and channels in the exact model");
+  return table;
+}
+
 CrystalBarbule::CrystalBarbule(const ParamView& p, const PluginContext& context) {
-  const std::string file = p.text("crystal");
-  std::filesystem::path path(file);
+  const CrystalBarbuleParams o = crystal_barbule_table().read(p);
+  std::filesystem::path path(o.crystal);
   if (path.is_relative()) path = context.config_dir / path;
   if (!std::filesystem::exists(path)) p.fail("crystal", "no such crystal file: " + path.string());
   crystal_file_ = path.lexically_normal().string();
   cell_ = load_crystal_cell(path);
-  outline_ = parse_outline_spec(p.child("outline"));
-  body_ = p.has("body") ? parse_material(p, "body") : cell_.host;
-  regularity_ = p.number_or("regularity", 1.0, Limits{0.0, 1.0, true, false});
-  const double tau = 1000.0 * p.number_or("regularity_correlation_um", 0.5, Limits::positive());
-  const double h = p.number_or("regularity_half_range", 0.1, Limits::non_negative());
+  outline_ = o.outline;
+  body_ = o.body ? *o.body : cell_.host;
+  regularity_ = o.regularity;
+  const double h = o.regularity_half_range;
   if (regularity_ < 1.0) {
     if (regularity_ - h <= 0.0 || regularity_ + h > 1.0) {
       p.fail("regularity_half_range", "the regularity must stay in (0, 1]: rho +- half range");
     }
   }
-  regularity_profile_ = {tau, regularity_ - h, regularity_ + h};
-  min_gap_nm_ = p.number_or("min_gap_nm", 1.0, Limits::non_negative());
-  rod_segments_ = static_cast<int>(p.integer_or("rod_segments", 24, Limits::closed(8, 256)));
-  place_lattice_ = p.boolean_or("exact_lattice", true);
+  regularity_profile_ = {o.regularity_correlation_nm, regularity_ - h, regularity_ + h};
+  min_gap_nm_ = o.min_gap_nm;
+  rod_segments_ = o.rod_segments;
+  place_lattice_ = o.exact_lattice;
   if (cell_.depth_nm() + cell_.a_z_nm >= outline_.thickness_nm) {
     p.child("outline").fail("thickness_um", "the crystal (" + std::to_string(cell_.depth_nm()) +
                                                 " nm deep) does not fit in the barbule");
@@ -182,22 +195,6 @@ CrossSection CrystalBarbule::generate(std::uint64_t index) const {
     }
   }
   return cs;
-}
-
-std::vector<ParamSpec> CrystalBarbule::param_table() {
-  std::vector<ParamSpec> t{
-      {"crystal", "path", "-", "required", "crystal cell file (configs/crystals/*.yaml), relative to the config"},
-      {"outline", "map", "-", "required", "top and bottom surfaces (rows outline.*)"},
-      {"body", "material", "-", "crystal host", "material of the barbule body"},
-      {"regularity", "number", "-", "1", "mean regularity rho in (0, 1]; 1: a perfect crystal"},
-      {"regularity_correlation_um", "number", "um", "0.5", "correlation of the regularity profile (rho < 1)"},
-      {"regularity_half_range", "number", "-", "0.1", "regularity spans exactly [rho - h, rho + h] (rho < 1)"},
-      {"min_gap_nm", "number", "nm", "1", "smallest gap kept between bodies of the exact model"},
-      {"rod_segments", "integer", "-", "24", "polygon vertices per rod"},
-      {"exact_lattice", "bool", "-", "true", "place rods and channels in the exact model"},
-  };
-  for (auto& row : outline_param_table()) t.push_back(row);
-  return t;
 }
 
 }  // namespace plumage::photonic_crystal

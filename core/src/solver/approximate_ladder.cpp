@@ -6,28 +6,27 @@
 //
 // The approximate solver's rungs are its own fidelity options (local reflection sub-samples per
 // segment, chunked or exact far field) for both current options; the ladder shows how much of
-// its error is model error that no option removes. It lives in the CLI because it drives two
-// solvers through the registry (the BEM is a plug-in) on a species config read from the tree.
+// its error is model error that no option removes. It drives both solvers through the registry
+// (the BEM is a plug-in, created by name; core never includes it) on a species config of the tree.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
-#include "app_context.hpp"
 #include "plumage/accuracy_ladder.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/conventions.hpp"
 #include "plumage/error.hpp"
 #include "plumage/far_field.hpp"
+#include "plumage/param_table.hpp"
 #include "plumage/pattern_metrics.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/scattering_solver.hpp"
 #include "plumage/species_config.hpp"
 #include "plumage/structure_generator.hpp"
-#include "segment_config.hpp"
 
-namespace plumage::cli {
+namespace plumage {
 
 namespace {
 
@@ -45,15 +44,8 @@ class ApproximateLadder final : public AccuracyLadder {
       throw Error("accuracy ladder 'approximate': " + species_ +
                   " not found (run `plumage bench ladder` from the source tree's top folder)");
     }
-    const auto path = segment_config(species_, width_um, "accuracy ladder 'approximate'");
-    SpeciesConfig config;
-    try {
-      config = load_species_config(path, registry_);
-    } catch (...) {
-      std::filesystem::remove(path);
-      throw;
-    }
-    std::filesystem::remove(path);
+    const SpeciesConfig config = load_species_segment(species_, width_um, registry_);
+    prepare_species(config, {});
     const CrossSection cs = config.structure->generate(0);
     if (const auto problems = validate(cs); !problems.empty()) {
       throw Error("accuracy ladder 'approximate': " + species_ + " at " + std::to_string(width_um) +
@@ -141,22 +133,30 @@ class ApproximateLadder final : public AccuracyLadder {
   std::string species_;
 };
 
+struct LadderParams {
+  std::string species;
+};
+
+const ParamTable<LadderParams>& ladder_params() {
+  static const auto table = ParamTable<LadderParams>{}.text(
+      "species", &LadderParams::species, "configs/species/rockdove.yaml",
+      "species config of the barbule (relative to the working folder: run from the source tree)");
+  return table;
+}
+
 }  // namespace
 
-void register_fit_ladder(PluginRegistry& registry);  // ladder_fit.cpp
-
-void register_cli_ladders(PluginRegistry& registry) {
-  register_fit_ladder(registry);
+void register_approximate_ladder(PluginRegistry& registry) {
   registry.builtin_registrar().add<AccuracyLadder>(
-      {.kind = "",
-       .type = "approximate",
+      {.type = "approximate",
        .version = "1.0.0",
        .summary = "accuracy ladder: the approximate solver's options against the BEM on a rock-dove segment "
                   "(3 um quick, 10 um full), and the BEM at 6-12 ppw against its 16 ppw",
-       .params = {{"species", "text", "-", "configs/species/rockdove.yaml", "species config of the barbule"}}},
-      [&registry](const ParamView& params, const PluginContext&) {
-        return std::make_unique<ApproximateLadder>(registry, params.text_or("species", "configs/species/rockdove.yaml"));
+       .params = ladder_params().specs()},
+      [](const ParamView& params, const PluginContext& context) {
+        if (!context.registry) throw Error("accuracy ladder 'approximate': needs a registry in its context");
+        return std::make_unique<ApproximateLadder>(*context.registry, ladder_params().read(params).species);
       });
 }
 
-}  // namespace plumage::cli
+}  // namespace plumage

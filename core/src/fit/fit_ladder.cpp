@@ -9,17 +9,18 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "app_context.hpp"
 #include "plumage/accuracy_ladder.hpp"
 #include "plumage/conventions.hpp"
 #include "plumage/error.hpp"
 #include "plumage/fitter.hpp"
+#include "plumage/param_table.hpp"
+#include "plumage/pattern_metrics.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/scattering_solver.hpp"
 #include "plumage/species_config.hpp"
 #include "plumage/structure_generator.hpp"
 
-namespace plumage::cli {
+namespace plumage {
 
 namespace {
 
@@ -33,6 +34,7 @@ class FitLadder final : public AccuracyLadder {
     }
     const SpeciesConfig config = load_species_config(species_, registry_);
     if (!config.structure || !config.solver) throw Error("accuracy ladder 'fit': " + species_ + " has no structure or solver");
+    prepare_species(config, {});
     const std::vector<int> ladder = options.quick ? std::vector<int>{2, 5, 10} : std::vector<int>{2, 5, 10, 20, 50};
     const int reference_instances = options.quick ? 40 : 200;
     const int max_rung = ladder.back();
@@ -77,11 +79,6 @@ class FitLadder final : public AccuracyLadder {
           for (int n = 0; n < count; ++n) set.push_back(simulate(static_cast<std::uint64_t>(n)));
           fit = unit(set);
         });
-        double num = 0, den = 0;
-        for (std::size_t k = 0; k < reference.size(); ++k) {
-          num += (fit.fit_pattern[k] - reference[k]) * (fit.fit_pattern[k] - reference[k]);
-          den += reference[k] * reference[k];
-        }
         LadderPoint pt;
         pt.backend = "fit";
         pt.case_name = case_name;
@@ -89,7 +86,7 @@ class FitLadder final : public AccuracyLadder {
         pt.fidelity = count;
         pt.reference = "mean simulated pattern of " + std::to_string(reference_instances) + " other instances";
         pt.metric = "rel. L2 of the fitted mean lobe on the cone";
-        pt.error = std::sqrt(num / den);
+        pt.error = relative_l2(fit.fit_pattern, reference);
         pt.wall_s = cost.wall_s;
         pt.cpu_s = cost.cpu_s;
         if (options.progress) {
@@ -109,19 +106,30 @@ class FitLadder final : public AccuracyLadder {
   std::string species_;
 };
 
+struct LadderParams {
+  std::string species;
+};
+
+const ParamTable<LadderParams>& ladder_params() {
+  static const auto table = ParamTable<LadderParams>{}.text(
+      "species", &LadderParams::species, "configs/species/rockdove.yaml",
+      "species config of the barbules (relative to the working folder: run from the source tree)");
+  return table;
+}
+
 }  // namespace
 
 void register_fit_ladder(PluginRegistry& registry) {
   registry.builtin_registrar().add<AccuracyLadder>(
-      {.kind = "",
-       .type = "fit",
+      {.type = "fit",
        .version = "1.0.0",
        .summary = "accuracy ladder: the mean lobe fitted to 2-50 simulated instances against the mean pattern of "
                   "40 (quick) or 200 other instances (rock dove, 550 nm)",
-       .params = {{"species", "text", "-", "configs/species/rockdove.yaml", "species config of the barbules"}}},
-      [&registry](const ParamView& params, const PluginContext&) {
-        return std::make_unique<FitLadder>(registry, params.text_or("species", "configs/species/rockdove.yaml"));
+       .params = ladder_params().specs()},
+      [](const ParamView& params, const PluginContext& context) {
+        if (!context.registry) throw Error("accuracy ladder 'fit': needs a registry in its context");
+        return std::make_unique<FitLadder>(*context.registry, ladder_params().read(params).species);
       });
 }
 
-}  // namespace plumage::cli
+}  // namespace plumage

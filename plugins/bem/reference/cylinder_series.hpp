@@ -1,7 +1,8 @@
 // plumage — exact series solutions for light scattering by infinite circular cylinders
-// (homogeneous and multilayer/coated), normal and oblique incidence.  Test oracle for the 2.5D BEM
-// (spec wave-simulation.md §6.11 items 1 and 2).  Independent of any BEM code: it uses only the
-// order-0/1 Bessel functions of plugins/bem/numerics/hankel.hpp and its own integer-order recurrences.
+// (homogeneous and multilayer/coated), normal and oblique incidence.  The reference ("oracle") the
+// 2.5D BEM is checked against by its accuracy ladder and tests (spec wave-simulation.md §6.11 items
+// 1 and 2).  Independent of any BEM code: it uses only the order-0/1 Bessel functions of
+// plugins/bem/numerics/hankel.hpp and its own integer-order recurrences.
 //
 // ------------------------------------------------------------------------------------------------
 // Conventions

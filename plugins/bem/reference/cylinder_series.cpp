@@ -1,4 +1,4 @@
-// plumage — exact series solutions for infinite circular cylinders (test oracle). See the header.
+// plumage — exact series solutions for infinite circular cylinders (the BEM's reference). See the header.
 
 #include "cylinder_series.hpp"
 
@@ -257,6 +257,184 @@ CylinderSolution solve_homogeneous_bh(double radius_um, cplx m, double lambda_um
 // toward y_L = z_L x x_L; phi = Phi.  Incident: E_z = e_z sum i^n J_n(gamma0 rho) e^{i n phi}, same for
 // Ht_z with h_z; pol 1: (e_z, h_z) = (cos theta_i, 0), pol 2: (0, -cos theta_i).
 // Far field: E along e1_o = E_z / cos theta_i, along e2_o (= -phi_hat) = -Ht_z / cos theta_i.
+namespace {
+
+// The layered cylinder at one (λ, θ_i, pol), the same for every order n: transverse wavenumbers,
+// the Bessel families at every interface and the layout of the unknowns.
+struct Layered {
+    int L = 0, N = 0, nu = 0;  // layers, highest order, unknowns per order (4 L)
+    double k0 = 0, beta = 0, ct = 0;
+    double e_z = 0, h_z = 0;   // incident axial amplitudes
+    const std::vector<double>* radii = nullptr;
+    std::vector<cplx> gam, m2;  // per layer, [L] = outside
+    // Families: for layer l, J at its inner (l-1) and outer (l) radius, Y likewise (l >= 1).
+    // Outside: J and H at the outer radius.
+    struct AtR {
+        Family J, Y, H;
+    };
+    std::vector<AtR> inner, outer;  // inner[l]: layer l evaluated at radii[l-1]; outer[l]: at radii[l]
+
+    // Column layout: core: [AE, AH] -> cols 0,1; shell l (1..L-1): [AE, BE, AH, BH] -> 2 + 4(l-1) + 0..3;
+    // outside: [cE, cH] -> nu-2, nu-1.
+    int col_of(int layer, int which) const {  // which: 0 AE, 1 BE, 2 AH, 3 BH (core/outside: 0 -> E, 2 -> H)
+        if (layer == 0) return which == 0 ? 0 : 1;
+        if (layer == L) return which == 0 ? nu - 2 : nu - 1;
+        return 2 + 4 * (layer - 1) + which;
+    }
+    // Field rows (E_z, Ht_z, E_phi, Ht_phi) of one basis function of order n (value f, derivative fp
+    // w.r.t. the argument) at radius r in medium l.
+    void rows(int n, int l, double r, cplx f, cplx fp, bool etype, cplx out[4]) const {
+        const cplx g = gam[l];
+        const cplx pre = kI / (g * g);
+        const cplx ang = beta * kI * static_cast<double>(n) / r;
+        if (etype) {  // coefficient of E_z
+            out[0] = f;
+            out[1] = 0.0;
+            out[2] = pre * ang * f;
+            out[3] = pre * k0 * m2[l] * g * fp;
+        } else {  // coefficient of Ht_z
+            out[0] = 0.0;
+            out[1] = f;
+            out[2] = -pre * k0 * g * fp;
+            out[3] = pre * ang * f;
+        }
+    }
+};
+
+Layered layered_setup(const std::vector<double>& radii_um, const std::vector<cplx>& m, double k0, double theta_i,
+                      int N, int pol) {
+    const int L = static_cast<int>(radii_um.size());
+    const double st = std::sin(theta_i), ct = std::cos(theta_i);
+    Layered c;
+    c.L = L;
+    c.N = N;
+    c.nu = 4 * L;
+    c.k0 = k0;
+    c.beta = -k0 * st;
+    c.ct = ct;
+    c.e_z = (pol == 1) ? ct : 0.0;
+    c.h_z = (pol == 1) ? 0.0 : -ct;
+    c.radii = &radii_um;
+    c.gam.resize(L + 1);
+    c.m2.resize(L + 1);
+    for (int l = 0; l < L; ++l) {
+        c.m2[l] = m[l] * m[l];
+        c.gam[l] = k0 * std::sqrt(c.m2[l] - st * st);
+        if (c.gam[l].imag() < 0) c.gam[l] = -c.gam[l];
+    }
+    c.m2[L] = 1.0;
+    c.gam[L] = k0 * ct;
+    c.inner.resize(L + 1);
+    c.outer.resize(L + 1);
+    for (int l = 0; l < L; ++l) {
+        c.outer[l].J = family(Kind::J, c.gam[l] * radii_um[l], N);
+        if (l >= 1) {
+            c.outer[l].Y = family(Kind::Y, c.gam[l] * radii_um[l], N);
+            c.inner[l].J = family(Kind::J, c.gam[l] * radii_um[l - 1], N);
+            c.inner[l].Y = family(Kind::Y, c.gam[l] * radii_um[l - 1], N);
+        }
+    }
+    c.inner[L].J = family(Kind::J, c.gam[L] * radii_um[L - 1], N);
+    c.inner[L].H = family(Kind::H, c.gam[L] * radii_um[L - 1], N);
+    return c;
+}
+
+// Scale of every unknown of order n (the larger of its basis function's value and derivative at
+// its radius); false when one of them under- or overflows (such high orders do not contribute).
+bool column_scales(const Layered& c, int n, std::vector<double>& colscale) {
+    const int L = c.L;
+    colscale.assign(c.nu, 1.0);
+    auto scale_of = [](cplx f, cplx fp) { return std::max(std::abs(f), std::abs(fp)); };
+    colscale[c.col_of(0, 0)] = colscale[c.col_of(0, 2)] = scale_of(val(c.outer[0].J, n), der(c.outer[0].J, n));
+    for (int l = 1; l < L; ++l) {
+        const double sj = scale_of(val(c.outer[l].J, n), der(c.outer[l].J, n));
+        const double sy = scale_of(val(c.inner[l].Y, n), der(c.inner[l].Y, n));
+        colscale[c.col_of(l, 0)] = colscale[c.col_of(l, 2)] = sj;
+        colscale[c.col_of(l, 1)] = colscale[c.col_of(l, 3)] = sy;
+    }
+    colscale[c.nu - 2] = colscale[c.nu - 1] = scale_of(val(c.inner[L].H, n), der(c.inner[L].H, n));
+    bool bad = false;
+    for (double v : colscale)
+        if (!(v > 0.0) || !std::isfinite(v)) bad = true;
+    return !bad;
+}
+
+// The four continuity rows of order n at interface ifc (radius radii[ifc], between layer ifc inside
+// and ifc + 1 outside): inside fields minus outside fields, the incident part on the right.
+void fill_interface(const Layered& c, int n, int ifc, const std::vector<double>& colscale, Eigen::MatrixXcd& A,
+                    Eigen::VectorXcd& rhs) {
+    const int L = c.L, nu = c.nu;
+    const double r = (*c.radii)[ifc];
+    const int row0 = 4 * ifc;
+    cplx rv[4];
+    // inside medium (layer ifc): J at its outer radius, Y at its outer radius
+    {
+        const int l = ifc;
+        const cplx fj = val(c.outer[l].J, n), fjp = der(c.outer[l].J, n);
+        for (int et = 0; et < 2; ++et) {
+            c.rows(n, l, r, fj, fjp, et == 0, rv);
+            const int col = c.col_of(l, et == 0 ? 0 : 2);
+            for (int k = 0; k < 4; ++k) A(row0 + k, col) += rv[k] / colscale[col];
+        }
+        if (l >= 1) {
+            const cplx fy = val(c.outer[l].Y, n), fyp = der(c.outer[l].Y, n);
+            for (int et = 0; et < 2; ++et) {
+                c.rows(n, l, r, fy, fyp, et == 0, rv);
+                const int col = c.col_of(l, et == 0 ? 1 : 3);
+                for (int k = 0; k < 4; ++k) A(row0 + k, col) += rv[k] / colscale[col];
+            }
+        }
+    }
+    // outside medium (layer ifc+1), subtracted
+    const int l = ifc + 1;
+    if (l < L) {
+        const cplx fj = val(c.inner[l].J, n), fjp = der(c.inner[l].J, n);
+        const cplx fy = val(c.inner[l].Y, n), fyp = der(c.inner[l].Y, n);
+        for (int et = 0; et < 2; ++et) {
+            c.rows(n, l, r, fj, fjp, et == 0, rv);
+            int col = c.col_of(l, et == 0 ? 0 : 2);
+            for (int k = 0; k < 4; ++k) A(row0 + k, col) -= rv[k] / colscale[col];
+            c.rows(n, l, r, fy, fyp, et == 0, rv);
+            col = c.col_of(l, et == 0 ? 1 : 3);
+            for (int k = 0; k < 4; ++k) A(row0 + k, col) -= rv[k] / colscale[col];
+        }
+    } else {
+        const cplx fh = val(c.inner[L].H, n), fhp = der(c.inner[L].H, n);
+        const cplx fj = val(c.inner[L].J, n), fjp = der(c.inner[L].J, n);
+        for (int et = 0; et < 2; ++et) {
+            c.rows(n, L, r, fh, fhp, et == 0, rv);
+            const int col = (et == 0) ? nu - 2 : nu - 1;
+            for (int k = 0; k < 4; ++k) A(row0 + k, col) -= rv[k] / colscale[col];
+            // incident part -> right-hand side (+ incident)
+            c.rows(n, L, r, fj, fjp, et == 0, rv);
+            const cplx amp = ipow(n) * (et == 0 ? c.e_z : c.h_z);
+            for (int k = 0; k < 4; ++k) rhs(row0 + k) += rv[k] * amp;
+        }
+    }
+}
+
+// Order n's term of the absorbed power from the total exterior field at r = a (per-order Poynting
+// flux): Q_abs = -pi Re sum_n (E_phi Ht_z^* - E_z Ht_phi^*).
+double exterior_flux_term(const Layered& c, int n, cplx cE, cplx cH) {
+    const int L = c.L;
+    const double r = (*c.radii)[L - 1];
+    cplx rv[4];
+    cplx tot[4] = {0, 0, 0, 0};
+    const cplx fh = val(c.inner[L].H, n), fhp = der(c.inner[L].H, n);
+    const cplx fj = val(c.inner[L].J, n), fjp = der(c.inner[L].J, n);
+    c.rows(n, L, r, fh, fhp, true, rv);
+    for (int k = 0; k < 4; ++k) tot[k] += rv[k] * cE;
+    c.rows(n, L, r, fh, fhp, false, rv);
+    for (int k = 0; k < 4; ++k) tot[k] += rv[k] * cH;
+    c.rows(n, L, r, fj, fjp, true, rv);
+    for (int k = 0; k < 4; ++k) tot[k] += rv[k] * (ipow(n) * c.e_z);
+    c.rows(n, L, r, fj, fjp, false, rv);
+    for (int k = 0; k < 4; ++k) tot[k] += rv[k] * (ipow(n) * c.h_z);
+    return (tot[2] * std::conj(tot[1]) - tot[0] * std::conj(tot[3])).real();
+}
+
+}  // namespace
+
 CylinderSolution solve_layered(const std::vector<double>& radii_um, const std::vector<cplx>& m, double lambda_um,
                                double theta_i, int pol) {
     if (pol != 1 && pol != 2) throw std::invalid_argument("pol must be 1 or 2");
@@ -266,150 +444,30 @@ CylinderSolution solve_layered(const std::vector<double>& radii_um, const std::v
     for (int l = 1; l < L; ++l)
         if (!(radii_um[l] > radii_um[l - 1])) throw std::invalid_argument("radii must increase");
     const double k0 = 2.0 * kPi / lambda_um;
-    const double st = std::sin(theta_i), ct = std::cos(theta_i);
-    const double beta = -k0 * st;
-    const double g0 = k0 * ct;
+    const double ct = std::cos(theta_i);
     const double x = k0 * radii_um.back();
     CylinderSolution s;
     s.x = x;
     s.theta_i = theta_i;
     s.pol = pol;
     s.k0 = k0;
-    s.gamma0 = g0;
-    s.beta = beta;
+    s.gamma0 = k0 * ct;
+    s.beta = -k0 * std::sin(theta_i);
     s.nmax = default_nmax(x);
     const int N = s.nmax;
     s.co.assign(2 * N + 1, 0.0);
     s.cr.assign(2 * N + 1, 0.0);
-
-    std::vector<cplx> gam(L + 1), m2(L + 1);
-    for (int l = 0; l < L; ++l) {
-        m2[l] = m[l] * m[l];
-        gam[l] = k0 * std::sqrt(m2[l] - st * st);
-        if (gam[l].imag() < 0) gam[l] = -gam[l];
-    }
-    m2[L] = 1.0;
-    gam[L] = g0;
-
-    // Families: for layer l, J at its inner (l-1) and outer (l) radius, Y likewise (l >= 1).
-    // Outside: J and H at the outer radius.
-    struct AtR {
-        Family J, Y, H;
-    };
-    std::vector<AtR> inner(L + 1), outer(L + 1);  // inner[l]: layer l evaluated at radii[l-1]; outer[l]: at radii[l]
-    for (int l = 0; l < L; ++l) {
-        outer[l].J = family(Kind::J, gam[l] * radii_um[l], N);
-        if (l >= 1) {
-            outer[l].Y = family(Kind::Y, gam[l] * radii_um[l], N);
-            inner[l].J = family(Kind::J, gam[l] * radii_um[l - 1], N);
-            inner[l].Y = family(Kind::Y, gam[l] * radii_um[l - 1], N);
-        }
-    }
-    inner[L].J = family(Kind::J, gam[L] * radii_um[L - 1], N);
-    inner[L].H = family(Kind::H, gam[L] * radii_um[L - 1], N);
-
-    const double e_z = (pol == 1) ? ct : 0.0;
-    const double h_z = (pol == 1) ? 0.0 : -ct;
-    const int nu = 4 * L;
+    const Layered c = layered_setup(radii_um, m, k0, theta_i, N, pol);
+    const int nu = c.nu;
     Eigen::MatrixXcd A(nu, nu);
     Eigen::VectorXcd rhs(nu);
+    std::vector<double> colscale;
     double qabs_sum = 0.0;
-
-    // Column layout: core: [AE, AH] -> cols 0,1; shell l (1..L-1): [AE, BE, AH, BH] -> 2 + 4(l-1) + 0..3;
-    // outside: [cE, cH] -> nu-2, nu-1.
-    auto col_of = [&](int layer, int which) {  // which: 0 AE, 1 BE, 2 AH, 3 BH (core/outside: 0 -> E, 2 -> H)
-        if (layer == 0) return which == 0 ? 0 : 1;
-        if (layer == L) return which == 0 ? nu - 2 : nu - 1;
-        return 2 + 4 * (layer - 1) + which;
-    };
-
     for (int n = -N; n <= N; ++n) {
         A.setZero();
         rhs.setZero();
-        std::vector<double> colscale(nu, 1.0);
-        // Field rows of one basis function (value f, derivative fp w.r.t. the argument) at radius r in medium l.
-        auto rows = [&](int l, double r, cplx f, cplx fp, bool etype, cplx out[4]) {
-            const cplx g = gam[l];
-            const cplx pre = kI / (g * g);
-            const cplx ang = beta * kI * static_cast<double>(n) / r;
-            if (etype) {  // coefficient of E_z
-                out[0] = f;
-                out[1] = 0.0;
-                out[2] = pre * ang * f;
-                out[3] = pre * k0 * m2[l] * g * fp;
-            } else {  // coefficient of Ht_z
-                out[0] = 0.0;
-                out[1] = f;
-                out[2] = -pre * k0 * g * fp;
-                out[3] = pre * ang * f;
-            }
-        };
-        auto scale_of = [](cplx f, cplx fp) { return std::max(std::abs(f), std::abs(fp)); };
-        // column scales
-        colscale[col_of(0, 0)] = colscale[col_of(0, 2)] = scale_of(val(outer[0].J, n), der(outer[0].J, n));
-        for (int l = 1; l < L; ++l) {
-            const double sj = scale_of(val(outer[l].J, n), der(outer[l].J, n));
-            const double sy = scale_of(val(inner[l].Y, n), der(inner[l].Y, n));
-            colscale[col_of(l, 0)] = colscale[col_of(l, 2)] = sj;
-            colscale[col_of(l, 1)] = colscale[col_of(l, 3)] = sy;
-        }
-        colscale[nu - 2] = colscale[nu - 1] = scale_of(val(inner[L].H, n), der(inner[L].H, n));
-        bool bad = false;
-        for (double v : colscale)
-            if (!(v > 0.0) || !std::isfinite(v)) bad = true;
-        if (bad) continue;  // orders this high do not contribute (underflow/overflow): leave zero
-
-        cplx rv[4];
-        for (int ifc = 0; ifc < L; ++ifc) {  // interface at radii[ifc], between layer ifc (in) and ifc+1 (out)
-            const double r = radii_um[ifc];
-            const int row0 = 4 * ifc;
-            // inside medium (layer ifc): J at its outer radius, Y at its outer radius
-            {
-                const int l = ifc;
-                const cplx fj = val(outer[l].J, n), fjp = der(outer[l].J, n);
-                for (int et = 0; et < 2; ++et) {
-                    rows(l, r, fj, fjp, et == 0, rv);
-                    const int c = col_of(l, et == 0 ? 0 : 2);
-                    for (int k = 0; k < 4; ++k) A(row0 + k, c) += rv[k] / colscale[c];
-                }
-                if (l >= 1) {
-                    const cplx fy = val(outer[l].Y, n), fyp = der(outer[l].Y, n);
-                    for (int et = 0; et < 2; ++et) {
-                        rows(l, r, fy, fyp, et == 0, rv);
-                        const int c = col_of(l, et == 0 ? 1 : 3);
-                        for (int k = 0; k < 4; ++k) A(row0 + k, c) += rv[k] / colscale[c];
-                    }
-                }
-            }
-            // outside medium (layer ifc+1), subtracted
-            {
-                const int l = ifc + 1;
-                if (l < L) {
-                    const cplx fj = val(inner[l].J, n), fjp = der(inner[l].J, n);
-                    const cplx fy = val(inner[l].Y, n), fyp = der(inner[l].Y, n);
-                    for (int et = 0; et < 2; ++et) {
-                        rows(l, r, fj, fjp, et == 0, rv);
-                        int c = col_of(l, et == 0 ? 0 : 2);
-                        for (int k = 0; k < 4; ++k) A(row0 + k, c) -= rv[k] / colscale[c];
-                        rows(l, r, fy, fyp, et == 0, rv);
-                        c = col_of(l, et == 0 ? 1 : 3);
-                        for (int k = 0; k < 4; ++k) A(row0 + k, c) -= rv[k] / colscale[c];
-                    }
-                } else {
-                    const cplx fh = val(inner[L].H, n), fhp = der(inner[L].H, n);
-                    const cplx fj = val(inner[L].J, n), fjp = der(inner[L].J, n);
-                    for (int et = 0; et < 2; ++et) {
-                        rows(L, r, fh, fhp, et == 0, rv);
-                        const int c = (et == 0) ? nu - 2 : nu - 1;
-                        for (int k = 0; k < 4; ++k) A(row0 + k, c) -= rv[k] / colscale[c];
-                        // incident part -> right-hand side (+ incident)
-                        rows(L, r, fj, fjp, et == 0, rv);
-                        const cplx amp = ipow(n) * (et == 0 ? e_z : h_z);
-                        for (int k = 0; k < 4; ++k) rhs(row0 + k) += rv[k] * amp;
-                    }
-                }
-            }
-        }
+        if (!column_scales(c, n, colscale)) continue;  // orders this high do not contribute: leave zero
+        for (int ifc = 0; ifc < L; ++ifc) fill_interface(c, n, ifc, colscale, A, rhs);
         const Eigen::VectorXcd sol = A.fullPivLu().solve(rhs);
         const cplx cE = sol(nu - 2) / colscale[nu - 2];
         const cplx cH = sol(nu - 1) / colscale[nu - 1];
@@ -423,23 +481,7 @@ CylinderSolution solve_layered(const std::vector<double>& radii_um, const std::v
             s.co[n + N] = tH;
             s.cr[n + N] = tE;
         }
-        // Absorbed power from the total exterior field at r = a (per-order Poynting flux):
-        // Q_abs = -pi Re sum_n (E_phi Ht_z^* - E_z Ht_phi^*).
-        {
-            const double r = radii_um[L - 1];
-            cplx tot[4] = {0, 0, 0, 0};
-            const cplx fh = val(inner[L].H, n), fhp = der(inner[L].H, n);
-            const cplx fj = val(inner[L].J, n), fjp = der(inner[L].J, n);
-            rows(L, r, fh, fhp, true, rv);
-            for (int k = 0; k < 4; ++k) tot[k] += rv[k] * cE;
-            rows(L, r, fh, fhp, false, rv);
-            for (int k = 0; k < 4; ++k) tot[k] += rv[k] * cH;
-            rows(L, r, fj, fjp, true, rv);
-            for (int k = 0; k < 4; ++k) tot[k] += rv[k] * (ipow(n) * e_z);
-            rows(L, r, fj, fjp, false, rv);
-            for (int k = 0; k < 4; ++k) tot[k] += rv[k] * (ipow(n) * h_z);
-            qabs_sum += (tot[2] * std::conj(tot[1]) - tot[0] * std::conj(tot[3])).real();
-        }
+        qabs_sum += exterior_flux_term(c, n, cE, cH);
     }
     s.q_abs_flux = -kPi * qabs_sum;
     finish(s);

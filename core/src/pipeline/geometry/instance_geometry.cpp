@@ -1,0 +1,32 @@
+// Checked instances and their files (plumage/instance_geometry.hpp).
+#include <chrono>
+
+#include "plumage/atomic_file.hpp"
+#include "plumage/cross_section_io.hpp"
+#include "plumage/image.hpp"
+#include "plumage/instance_geometry.hpp"
+
+namespace plumage {
+
+CheckedInstance generate_checked(const StructureGenerator& generator, std::uint64_t index) {
+  CheckedInstance out;
+  const auto t0 = std::chrono::steady_clock::now();
+  out.section = generator.generate(index);
+  out.generate_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  out.problems = validate(out.section);
+  return out;
+}
+
+void write_cross_section_files(const CrossSection& section, const std::filesystem::path& base,
+                               const CrossSectionPictures& pictures) {
+  write_file_atomically(base.string() + ".xsec", [&](std::ostream& s) { write_cross_section_text(s, section); });
+  SvgOptions options;
+  options.pixels_per_um = pictures.pixels_per_um;
+  if (pictures.window_um > 0) options.window_nm = std::make_pair(-500.0 * pictures.window_um, 500.0 * pictures.window_um);
+  if (pictures.svg) {
+    write_file_atomically(base.string() + ".svg", [&](std::ostream& s) { write_cross_section_svg(s, section, options); });
+  }
+  if (pictures.png) write_png(render_cross_section(section, options), base.string() + ".png");
+}
+
+}  // namespace plumage
