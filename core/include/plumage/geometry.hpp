@@ -35,12 +35,6 @@ std::vector<double> circular_autocovariance(std::span<const double> xs, std::spa
 // period): a finite periodic profile without DC has C = Gaussian − constant.
 double gaussian_correlation_length(std::span<const double> autocovariance, double step_nm);
 
-// In-place radix-2 complex FFT (size a power of two); inverse without 1/N scaling.
-// Written here rather than taken from FFTW on purpose: FFTW chooses its SIMD codelets per CPU,
-// so its last bits may differ between machines, while a barbule instance must be bit-identical
-// on every machine (DESIGN §6). Sizes here are ≤ 2^14, where speed does not matter.
-void fft_radix2(std::vector<Complex>& data, bool inverse);
-
 // Polyline tools.
 double polyline_length(const Polyline& line);
 // Resampled at uniform arc length: ⌈L/spacing⌉ segments (rounded up to even if `even`).

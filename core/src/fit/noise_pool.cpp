@@ -10,26 +10,17 @@
 // sampling spread of the variance only (tests/test_fit_noise.cpp measures it).
 //
 // Random numbers: function k uses RandomStream(seed, k); values are drawn in a fixed order,
-// so the pool depends on (seed, ρ, count) only. FFTW (FFTW_ESTIMATE) runs on the one process
-// that assembles the material, so single, sharded and MPI runs on one machine agree bit for bit.
-#include <fftw3.h>
-
+// so the pool depends on (seed, ρ, count) only. FFTW runs with estimate plans and scalar codelets
+// (fft/real_fft.hpp), so the pool is the same bits on every machine.
 #include <cmath>
 #include <complex>
-#include <mutex>
 
+#include "fft/real_fft.hpp"
 #include "plumage/error.hpp"
 #include "plumage/fitter.hpp"
 #include "plumage/random.hpp"
 
 namespace plumage {
-
-namespace {
-std::mutex& fftw_planner_mutex() {  // FFTW's planner is not thread-safe
-  static std::mutex m;
-  return m;
-}
-}  // namespace
 
 NoisePool synthesize_noise_pool(const std::vector<double>& acf, int count, std::uint64_t seed) {
   const int n = static_cast<int>(acf.size());
@@ -37,16 +28,10 @@ NoisePool synthesize_noise_pool(const std::vector<double>& acf, int count, std::
   if (count < 1) throw Error("noise synthesis: count must be >= 1");
 
   // Power spectrum of ρ (real input → half spectrum).
-  std::vector<double> in(acf);
-  std::vector<std::complex<double>> spec(n / 2 + 1);
-  std::vector<double> out(n);
-  fftw_plan forward, backward;
-  {
-    std::lock_guard lock(fftw_planner_mutex());
-    forward = fftw_plan_dft_r2c_1d(n, in.data(), reinterpret_cast<fftw_complex*>(spec.data()), FFTW_ESTIMATE);
-    backward = fftw_plan_dft_c2r_1d(n, reinterpret_cast<fftw_complex*>(spec.data()), out.data(), FFTW_ESTIMATE);
-  }
-  fftw_execute(forward);
+  const detail::RealFft fft(static_cast<std::size_t>(n));
+  std::vector<std::complex<double>> spec;
+  std::vector<double> out;
+  fft.forward(acf, spec);
   std::vector<double> amplitude(n / 2 + 1);
   for (int k = 0; k <= n / 2; ++k) amplitude[k] = std::sqrt(std::abs(spec[k]) / n);
 
@@ -63,7 +48,7 @@ NoisePool synthesize_noise_pool(const std::vector<double>& acf, int count, std::
       spec[k] = amplitude[k] * std::complex<double>(g, g2);
     }
     // c2r computes Σ_k c_k e^{+2πikt/N} over the full Hermitian spectrum, no 1/N.
-    fftw_execute_dft_c2r(backward, reinterpret_cast<fftw_complex*>(spec.data()), out.data());
+    fft.inverse(spec, out);
     double mean = 0;
     for (double v : out) mean += v;
     mean /= n;
@@ -73,11 +58,6 @@ NoisePool synthesize_noise_pool(const std::vector<double>& acf, int count, std::
     const double scale = var > 0 ? 1.0 / std::sqrt(var) : 0.0;
     float* dst = pool.functions.data() + static_cast<std::size_t>(f) * static_cast<std::size_t>(n);
     for (int t = 0; t < n; ++t) dst[t] = static_cast<float>((out[t] - mean) * scale);
-  }
-  {
-    std::lock_guard lock(fftw_planner_mutex());
-    fftw_destroy_plan(forward);
-    fftw_destroy_plan(backward);
   }
   // Lag-one correlation of the pool itself (for variance-preserving interpolation, §4.8 step 3).
   double c1 = 0, c0 = 0;

@@ -8,6 +8,7 @@
 
 #include "plumage/error.hpp"
 #include "plumage/geometry.hpp"
+#include "fft/real_fft.hpp"
 
 namespace plumage {
 
@@ -16,36 +17,6 @@ double RandomStream::normal() {
   const double u1 = 1.0 - uniform();
   const double u2 = uniform();
   return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
-}
-
-void fft_radix2(std::vector<Complex>& a, bool inverse) {
-  const std::size_t n = a.size();
-  if (n == 0 || (n & (n - 1)) != 0) throw Error("fft_radix2: size must be a power of two");
-  for (std::size_t i = 1, j = 0; i < n; ++i) {
-    std::size_t bit = n >> 1;
-    for (; j & bit; bit >>= 1) j ^= bit;
-    j ^= bit;
-    if (i < j) std::swap(a[i], a[j]);
-  }
-  // Twiddles of the largest stage, e^{∓2πik/n}; stage `len` uses every (n/len)-th.
-  std::vector<Complex> tw(n / 2);
-  const double base = (inverse ? 2.0 : -2.0) * kPi / static_cast<double>(n);
-  for (std::size_t k = 0; k < n / 2; ++k) {
-    tw[k] = Complex(std::cos(base * static_cast<double>(k)), std::sin(base * static_cast<double>(k)));
-  }
-  for (std::size_t len = 2; len <= n; len <<= 1) {
-    const std::size_t half = len / 2;
-    const std::size_t stride = n / len;
-    for (std::size_t k = 0; k < half; ++k) {
-      const Complex w = tw[k * stride];
-      for (std::size_t i = 0; i < n; i += len) {
-        const Complex u = a[i + k];
-        const Complex v = a[i + k + half] * w;
-        a[i + k] = u + v;
-        a[i + k + half] = u - v;
-      }
-    }
-  }
 }
 
 std::vector<double> rough_profile(std::span<const double> xs, double x_min, double x_max,
@@ -58,20 +29,19 @@ std::vector<double> rough_profile(std::span<const double> xs, double x_min, doub
   const double target = std::min(spec.correlation_nm / 10.0, 30.0);
   std::size_t n = 64;
   while (static_cast<double>(n) * target < length) n <<= 1;
-  std::vector<Complex> spectrum(n, Complex(0.0, 0.0));
+  std::vector<Complex> spectrum(n / 2 + 1, Complex(0.0, 0.0));
   const double tau = spec.correlation_nm;
-  // Hermitian spectrum: bins k = 1 … n/2−1 get random phases, −k the conjugate; DC and Nyquist 0.
+  // Hermitian spectrum: bins k = 1 … n/2−1 get random phases (−k the conjugate, implied by the
+  // real inverse transform); DC and Nyquist 0.
   for (std::size_t k = 1; k < n / 2; ++k) {
     const double f = static_cast<double>(k) / length;
     const double amplitude = std::exp(-kPi * kPi * tau * tau * f * f);
     const double phase = rng.uniform(-kPi, kPi);
     if (amplitude < 1e-300) continue;
     spectrum[k] = std::polar(amplitude, phase);
-    spectrum[n - k] = std::conj(spectrum[k]);
   }
-  fft_radix2(spectrum, true);
-  std::vector<double> grid(n);
-  for (std::size_t i = 0; i < n; ++i) grid[i] = spectrum[i].real();
+  std::vector<double> grid;
+  detail::RealFft(n).inverse(spectrum, grid);
   if (permute) {
     auto it = std::min_element(grid.begin(), grid.end());
     std::rotate(grid.begin(), it, grid.end());
@@ -120,12 +90,14 @@ std::vector<double> circular_autocovariance(std::span<const double> xs, std::spa
   max_lag = std::min(max_lag, count - 1);
   std::vector<double> c(max_lag + 1, 0.0);
   if ((count & (count - 1)) == 0) {  // power of two: Wiener-Khinchin with the FFT
-    std::vector<Complex> f(g.begin(), g.end());
-    fft_radix2(f, false);
+    const detail::RealFft fft(count);
+    std::vector<Complex> f;
+    fft.forward(g, f);
     for (auto& v : f) v = std::norm(v);
-    fft_radix2(f, true);
+    std::vector<double> acf;
+    fft.inverse(f, acf);
     const double scale = 1.0 / (static_cast<double>(count) * static_cast<double>(count));
-    for (std::size_t k = 0; k <= max_lag; ++k) c[k] = f[k].real() * scale;
+    for (std::size_t k = 0; k <= max_lag; ++k) c[k] = acf[k] * scale;
     return c;
   }
   for (std::size_t k = 0; k <= max_lag; ++k) {
