@@ -9,36 +9,25 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
-#include <limits>
+#include <optional>
 #include <memory>
 #include <sstream>
 
 #include "plumage/charts.hpp"
 #include "commands.hpp"
-#include "plumage/diagnostics.hpp"
-#include "plumage/config_document.hpp"
-#include "plumage/crystal_cell.hpp"
 #include "plumage/error.hpp"
 #include "plumage/reflection_table.hpp"
-#include "plumage/table_builder.hpp"
+#include "plumage/table_build.hpp"
 #include "progress.hpp"
 
 namespace plumage::cli {
 
 namespace {
 
-constexpr double kUnset = std::numeric_limits<double>::quiet_NaN();
-
 struct BuildOptions {
-  std::string config;
-  std::string fidelity = "production";
-  std::string out;
-  std::string builder = "fdtd_periodic";
-  double lambda_lo = 400, lambda_hi = 700;
-  int n_lambda = 0, n_theta = 0, n_phi = 0;  // 0: by fidelity (production 50×20×50, preview 16×10×10)
-  double resolution_nm = kUnset;            // unset: the builder's default for the fidelity
-  double k_step = kUnset;                   // unset: the builder's default
-  bool restart = false;                     // ignore an existing checkpoint
+  TableBuildRequest request;
+  std::string config, out;
+  std::optional<double> resolution_nm, k_step;
 };
 
 struct QueryOptions {
@@ -52,55 +41,20 @@ struct PlotOptions {
   std::string out;
 };
 
-std::string read_text(const std::string& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw UsageError("cannot read " + file);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-void build(AppContext& context, const BuildOptions& o) {
-  const CrystalCell cell = load_crystal_cell(o.config);
-  const bool preview = o.fidelity == "preview";
-  const int nl = o.n_lambda > 0 ? o.n_lambda : (preview ? 16 : 50);
-  const int nt = o.n_theta > 0 ? o.n_theta : (preview ? 10 : 20);
-  const int np = o.n_phi > 0 ? o.n_phi : (preview ? 10 : 50);
-  std::ostringstream params;
-  params << "fidelity: " << o.fidelity << "\n";
-  // Given values go to the builder unchanged, so it validates them (exit 2 naming the field).
-  if (!std::isnan(o.resolution_nm)) params << "resolution_nm: " << o.resolution_nm << "\n";
-  if (!std::isnan(o.k_step)) params << "k_step_per_um: " << o.k_step << "\n";
-  // Resumable: finished runs go to <out>.partial; a rerun of the same build continues from it.
-  const std::string partial = o.out + ".partial";
-  if (o.restart) std::filesystem::remove(partial);
-  if (o.builder == "fdtd_periodic") params << "checkpoint: \"" << partial << "\"\n";
-  const ConfigDocument doc = ConfigDocument::parse(params.str(), "table build options");
-  auto builder = context.registry().create_named<TableBuilder>(o.builder, doc.root(), context.registry().context());
+void build(AppContext& context, BuildOptions o) {
+  o.request.crystal_config = o.config;
+  o.request.out = o.out;
+  o.request.resolution_nm = o.resolution_nm;
+  o.request.k_step_per_um = o.k_step;
   std::unique_ptr<Progress> bar;
-  ReflectionTable table = builder->build(
-      cell, TableGrid::uniform(o.lambda_lo, o.lambda_hi, nl, nt, np),
-      [&](std::size_t done, std::size_t total, std::string_view what) {
-        if (!bar) bar = std::make_unique<Progress>(std::string(what), total, context.quiet);
-        bar->advance(done);
-      });
-  table.metadata().config_hash = fnv1a_hex(read_text(o.config));
-  // Every warning of the run (plumage/diagnostics.hpp), also those raised outside the builder.
-  // Codes the builder already wrote into its notes ("WARNING: … [code]") are not repeated.
-  {
-    auto& notes = table.metadata().notes;
-    std::string extra;
-    for (const Warning& w : diagnostics().warnings()) {
-      if (notes.find("[" + w.code + "]") != std::string::npos) continue;
-      extra += "; WARNING: " + w.message + (w.count > 1 ? " (raised " + std::to_string(w.count) + " times)" : "") +
-               " [" + w.code + "]";
-    }
-    if (!extra.empty()) notes += notes.empty() ? extra.substr(2) : extra;
-  }
-  table.save(o.out);
-  std::filesystem::remove(partial);
+  const TableBuildResult r = build_table_file(o.request, context.registry(),
+                                              [&](std::size_t done, std::size_t total, std::string_view what) {
+                                                if (!bar) bar = std::make_unique<Progress>(std::string(what), total, context.quiet);
+                                                bar->advance(done);
+                                              });
   if (!context.quiet) {
-    std::cerr << "wrote " << o.out << ": " << cell.name << ", " << nl << " x " << nt << " x " << np
-              << " entries, resolution " << table.metadata().resolution_nm << " nm\n  "
-              << table.metadata().notes << "\n";
+    std::cerr << "wrote " << o.out << ": " << r.crystal << ", " << r.grid.n_lambda << " x " << r.grid.n_theta << " x "
+              << r.grid.n_phi << " entries, resolution " << r.resolution_nm << " nm\n  " << r.notes << "\n";
   }
 }
 
@@ -189,18 +143,21 @@ void add_table_command(CLI::App& app, AppContext& context) {
   auto b = std::make_shared<BuildOptions>();
   auto* cb = table->add_subcommand("build", "Build a table for a crystal config with a table_builder plug-in");
   cb->add_option("config", b->config, "Crystal config (configs/crystals/*.yaml)")->required();
-  cb->add_option("--fidelity", b->fidelity, "preview or production")
+  cb->add_option("--fidelity", b->request.fidelity, "preview or production")
       ->check(CLI::IsMember({"preview", "production"}))->capture_default_str();
   cb->add_option("--out", b->out, "Table file to write (.plt)")->required();
-  cb->add_option("--builder", b->builder, "table_builder plug-in")->capture_default_str();
-  cb->add_option("--lambda-min", b->lambda_lo, "Shortest wavelength (nm)")->capture_default_str();
-  cb->add_option("--lambda-max", b->lambda_hi, "Longest wavelength (nm)")->capture_default_str();
-  cb->add_option("--n-lambda", b->n_lambda, "Wavelengths (default by fidelity: 50 / 16)");
-  cb->add_option("--n-theta", b->n_theta, "cos theta nodes k/n (default 20 / 10)");
-  cb->add_option("--n-phi", b->n_phi, "cos phi_local nodes k/n (default 50 / 10)");
+  cb->add_option("--builder", b->request.builder, "table_builder plug-in")->capture_default_str();
+  cb->add_option("--lambda-min", b->request.lambda_min_nm, "Shortest wavelength (nm)")->capture_default_str();
+  cb->add_option("--lambda-max", b->request.lambda_max_nm, "Longest wavelength (nm)")->capture_default_str();
+  const auto count = [](const char* what, int production, int preview) {
+    return std::string(what) + " (default by fidelity: " + std::to_string(production) + " / " + std::to_string(preview) + ")";
+  };
+  cb->add_option("--n-lambda", b->request.grid.n_lambda, count("Wavelengths", kProductionTableGrid.n_lambda, kPreviewTableGrid.n_lambda));
+  cb->add_option("--n-theta", b->request.grid.n_theta, count("cos theta nodes k/n", kProductionTableGrid.n_theta, kPreviewTableGrid.n_theta));
+  cb->add_option("--n-phi", b->request.grid.n_phi, count("cos phi_local nodes k/n", kProductionTableGrid.n_phi, kPreviewTableGrid.n_phi));
   cb->add_option("--resolution-nm", b->resolution_nm, "Grid step (default: the builder's for the fidelity)");
   cb->add_option("--k-step", b->k_step, "Bloch-k grid step in 1/um (0: one run per entry)");
-  cb->add_flag("--restart", b->restart, "Ignore the checkpoint <out>.partial of an interrupted build");
+  cb->add_flag("--restart", b->request.restart, "Ignore the checkpoint <out>.partial of an interrupted build");
   cb->callback([&context, b] { build(context, *b); });
 
   auto q = std::make_shared<QueryOptions>();

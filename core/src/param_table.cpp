@@ -12,7 +12,12 @@ std::string format_param_number(double value) {
 }
 
 std::string format_param_interval(std::pair<double, double> value) {
-  return "[" + format_param_number(value.first) + ", " + format_param_number(value.second) + "]";
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, a false positive) on "[" + std::string.
+  std::string out = "[";
+  out += format_param_number(value.first);
+  out += ", ";
+  out += format_param_number(value.second);
+  return out += "]";
 }
 
 std::string format_param_numbers(const std::vector<double>& values) {

@@ -116,13 +116,14 @@ TEST_CASE("a factory reads exactly the parameters its table declares", "[plugins
   conditional.condition = "model: films";
   add_builtin(registry, "conditional", {{"a", "number", "1", "1", "declared"}, conditional}, {"a"});
   add_builtin(registry, "nested", {{"a", "map", "-", "{}", "a map"}, {"a.x", "number", "1", "1", "in a"}}, {"a"});
-  const ParamView none;
-  CHECK_THROWS_WITH(registry.create_named<LocalReflection>("reads_undeclared", none, registry.context()),
+  // A fresh empty section per creation: a view remembers the keys read from it.
+  auto none = [] { return ConfigDocument::parse("{}\n", "empty.yaml"); };
+  CHECK_THROWS_WITH(registry.create_named<LocalReflection>("reads_undeclared", none().root(), registry.context()),
                     Catch::Contains("read the parameter 'b', which its parameter table does not declare"));
-  CHECK_THROWS_WITH(registry.create_named<LocalReflection>("skips_declared", none, registry.context()),
+  CHECK_THROWS_WITH(registry.create_named<LocalReflection>("skips_declared", none().root(), registry.context()),
                     Catch::Contains("declares the parameter 'b' but did not read it"));
-  CHECK_NOTHROW(registry.create_named<LocalReflection>("conditional", none, registry.context()));
-  CHECK_NOTHROW(registry.create_named<LocalReflection>("nested", none, registry.context()));
+  CHECK_NOTHROW(registry.create_named<LocalReflection>("conditional", none().root(), registry.context()));
+  CHECK_NOTHROW(registry.create_named<LocalReflection>("nested", none().root(), registry.context()));
   // Through a config section the type key is the host's, not the factory's.
   auto doc = ConfigDocument::parse("reflection: {model: conditional, a: 2}\n", "c.yaml");
   CHECK_NOTHROW(registry.create<LocalReflection>(doc.root().child("reflection"), "model", registry.context()));

@@ -6,6 +6,7 @@
 #include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 #include "plumage/param_table.hpp"
+#include "plumage/table_build.hpp"
 
 namespace plumage::photonic_crystal {
 
@@ -21,7 +22,8 @@ struct TableReflectionParams {
   std::string table_builder = "fdtd_periodic";
   std::optional<ParamView> builder;
   std::pair<double, double> lambda_nm{400.0, 700.0};
-  int n_lambda = 50, n_theta = 20, n_phi = 50;
+  // The production table grid (table_build.hpp), as `plumage table build --fidelity production`.
+  int n_lambda = kProductionTableGrid.n_lambda, n_theta = kProductionTableGrid.n_theta, n_phi = kProductionTableGrid.n_phi;
 };
 
 fs::path resolve(const PluginContext& context, const std::string& name) {
@@ -65,11 +67,11 @@ const ParamTable<TableReflectionParams>& table_reflection_table() {
           .only_if(on_demand, given)
           .interval("lambda_nm", &P::lambda_nm, "nm", {400.0, 700.0}, Limits::positive(), "wavelength range of the table")
           .only_if(on_demand, given)
-          .integer("n_lambda", &P::n_lambda, "1", 50, Limits::closed(1, 10000), "wavelengths of the table")
+          .integer("n_lambda", &P::n_lambda, "1", kProductionTableGrid.n_lambda, Limits::closed(1, 10000), "wavelengths of the table")
           .only_if(on_demand, given)
-          .integer("n_theta", &P::n_theta, "1", 20, Limits::closed(1, 10000), "cos theta nodes k/n (k = 1..n)")
+          .integer("n_theta", &P::n_theta, "1", kProductionTableGrid.n_theta, Limits::closed(1, 10000), "cos theta nodes k/n (k = 1..n)")
           .only_if(on_demand, given)
-          .integer("n_phi", &P::n_phi, "1", 50, Limits::closed(1, 10000), "cos phi_local nodes k/n (k = 1..n)")
+          .integer("n_phi", &P::n_phi, "1", kProductionTableGrid.n_phi, Limits::closed(1, 10000), "cos phi_local nodes k/n (k = 1..n)")
           .only_if(on_demand, given);
   return table;
 }
