@@ -1,6 +1,8 @@
 // ParamView over yaml-cpp nodes, with known-key bookkeeping and located errors.
 #include "plumage/params.hpp"
 
+#include "plumage/param_table.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -59,13 +61,15 @@ bool Limits::admits(double v) const {
   return true;
 }
 
+// Shortest round-trip form (format_param_number), so an integer bound reads as one: 1048576, not
+// 1.04858e+06.
 std::string Limits::describe() const {
   if (min && max) {
-    return std::string(min_exclusive ? "in (" : "in [") + format_number(*min) + ", " +
-           format_number(*max) + (max_exclusive ? ")" : "]");
+    return std::string(min_exclusive ? "in (" : "in [") + format_param_number(*min) + ", " +
+           format_param_number(*max) + (max_exclusive ? ")" : "]");
   }
-  if (min) return (min_exclusive ? "> " : ">= ") + format_number(*min);
-  if (max) return (max_exclusive ? "< " : "<= ") + format_number(*max);
+  if (min) return (min_exclusive ? "> " : ">= ") + format_param_number(*min);
+  if (max) return (max_exclusive ? "< " : "<= ") + format_param_number(*max);
   return "finite";
 }
 
