@@ -2,11 +2,17 @@
 #include "plumage/param_table.hpp"
 
 #include <charconv>
+#include <cmath>
 
 namespace plumage {
 
 std::string format_param_number(double value) {
   char buffer[64];
+  // Whole numbers in full (100000, not the shorter 1e+05), others in shortest round-trip form.
+  if (std::abs(value) < 1e15 && value == std::trunc(value)) {
+    const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, static_cast<long long>(value));
+    return ec == std::errc() ? std::string(buffer, end) : std::string("?");
+  }
   const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, value);
   return ec == std::errc() ? std::string(buffer, end) : std::string("?");
 }

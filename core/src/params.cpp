@@ -18,12 +18,6 @@ namespace plumage {
 
 namespace {
 
-std::string format_number(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
 SourceMark mark_from(const YAML::Mark& m, const std::string& file) {
   if (m.is_null() || m.line < 0) return {file, 0, 0};
   return {file, m.line + 1, m.column + 1};
