@@ -1,15 +1,25 @@
 // A LocalReflection of constant, polarization-independent reflectance: the smallest useful
-// plug-in, e.g. a stand-in "grey mirror" under every surface point.
-//
-// | name        | type   | unit | default | meaning                                   |
-// |-------------|--------|------|---------|-------------------------------------------|
-// | reflectance | number | 1    | 0.04    | power reflectance R in [0, 1], real r = √R |
+// plug-in, e.g. a stand-in "grey mirror" under every surface point. Its one parameter is declared
+// once, in a ParamTable: that declaration reads it, checks its range and documents it
+// (`plumage plugins describe constant_reflectance`).
 #include <cmath>
 
 #include <plumage/local_reflection.hpp>
+#include <plumage/param_table.hpp>
 #include <plumage/plugin_export.hpp>
 
 namespace {
+
+struct ConstantParams {
+  double reflectance = 0.04;
+};
+
+const plumage::ParamTable<ConstantParams>& constant_table() {
+  static const auto table = plumage::ParamTable<ConstantParams>{}.number(
+      "reflectance", &ConstantParams::reflectance, "1", 0.04, plumage::Limits::unit_interval(),
+      "power reflectance R (real amplitude r = sqrt R, both polarizations)");
+  return table;
+}
 
 class ConstantReflectance final : public plumage::LocalReflection {
  public:
@@ -25,14 +35,12 @@ class ConstantReflectance final : public plumage::LocalReflection {
 
 void register_constant(plumage::Registrar& registrar) {
   registrar.add<plumage::LocalReflection>(
-      {.kind = "",
-       .type = "constant_reflectance",
+      {.type = "constant_reflectance",
        .version = "1.0.0",
        .summary = "constant power reflectance at every point, both polarizations",
-       .params = {{"reflectance", "number", "1", "0.04", "power reflectance R in [0, 1]"}}},
+       .params = constant_table().specs()},
       [](const plumage::ParamView& params, const plumage::PluginContext&) {
-        return std::make_unique<ConstantReflectance>(
-            params.number_or("reflectance", 0.04, plumage::Limits::unit_interval()));
+        return std::make_unique<ConstantReflectance>(constant_table().read(params).reflectance);
       });
 }
 
