@@ -4,7 +4,7 @@
 // nearest valid name (params.hpp). Each section is read by one parameter table (param_table.hpp,
 // listed in docs/parameters.md under "scene"). Geometry is built separately
 // (build_scene_meshes), feather materials are resolved by the caller, and the renderer reads its
-// own section (render_job.hpp does all three for `plumage render`).
+// own section (render_job.hpp does all three for `plumage render`). User guide: docs/scenes.md.
 //
 //   scene: starling                      # name of the outputs (default: the file's stem)
 //   renderer: pathtracer                 # or {type: pathtracer, spp: 16, seed: 1, lod: auto, ...}:
