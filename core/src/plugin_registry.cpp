@@ -1,7 +1,8 @@
-// Loading plug-in libraries with Boost.DLL and creating objects by (kind, type).
+// Loading plug-in libraries (checked by plugin_probe before dlopen) and creating objects by
+// (kind, type).
 #include "plumage/plugin_registry.hpp"
 
-#include <boost/dll/shared_library.hpp>
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -9,6 +10,7 @@
 
 #include "plumage/data_paths.hpp"
 #include "plumage/version.hpp"
+#include "plugin_probe.hpp"
 
 namespace plumage {
 
@@ -18,8 +20,10 @@ namespace {
 
 // Libraries are never unloaded before exit: objects and factories created from them may live
 // anywhere, and unloading code that is still referenced is undefined behaviour.
-std::vector<std::shared_ptr<boost::dll::shared_library>>& loaded_libraries() {
-  static auto* libraries = new std::vector<std::shared_ptr<boost::dll::shared_library>>();
+// A library refused after dlopen stays loaded too: its static constructors have run and may have
+// left references to its code behind (atexit handlers, registrations in other libraries).
+std::vector<void*>& loaded_libraries() {
+  static auto* libraries = new std::vector<void*>();
   return *libraries;
 }
 
@@ -118,27 +122,34 @@ void PluginRegistry::load_library(const fs::path& file) {
   if (!fs::exists(file, fec)) {
     throw PluginError(file.string() + ": no such plug-in library");
   }
-  auto library = std::make_shared<boost::dll::shared_library>();
-  boost::dll::fs::error_code ec;
-  library->load(boost::dll::fs::path(file.string()), ec,
-                boost::dll::load_mode::rtld_now | boost::dll::load_mode::rtld_local);
-  if (ec) {
-    throw PluginError(file.string() + ": cannot load as a shared library: " + ec.message());
+  // dlopen maps the file as it is: a truncated or damaged file would fault inside the loader.
+  if (auto problem = detail::probe_plugin_file(file)) throw PluginError(file.string() + ": " + *problem);
+  // An absolute name: dlopen would search the library path for a name without a slash.
+  const fs::path absolute = fs::absolute(file, fec);
+  dlerror();
+  void* handle = dlopen((fec ? file : absolute).c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* why = dlerror();
+    throw PluginError(file.string() + ": cannot load as a shared library: " + (why ? why : "unknown reason"));
   }
-  for (const char* symbol : {"plumage_abi_version", "plumage_register"}) {
-    if (!library->has(symbol)) {
-      throw PluginError(file.string() + ": not a plumage plug-in: it does not export '" +
-                        symbol + "' (use PLUMAGE_PLUGIN from plumage/plugin_export.hpp)");
+  loaded_libraries().push_back(handle);
+  auto follow = [&](const char* name, detail::AliasTarget kind, std::size_t size) {
+    detail::AliasLookup alias = detail::follow_alias(handle, name, kind, size);
+    if (!alias.target) {
+      throw PluginError(file.string() + ": not a plumage plug-in: " + alias.problem +
+                        " (use PLUMAGE_PLUGIN from plumage/plugin_export.hpp)");
     }
-  }
-  const int abi = library->get_alias<const int>("plumage_abi_version");
+    return alias.target;
+  };
+  const void* abi_target = follow("plumage_abi_version", detail::AliasTarget::data, sizeof(int));
+  const void* register_target = follow("plumage_register", detail::AliasTarget::code, 1);
+  const int abi = *static_cast<const int*>(abi_target);
   if (abi != kAbiVersion) {
     throw PluginError(file.string() + ": plug-in ABI version " + std::to_string(abi) +
                       " does not match this plumage's ABI version " +
                       std::to_string(kAbiVersion) + "; rebuild the plug-in against this SDK");
   }
-  auto& register_fn = library->get_alias<void(Registrar&)>("plumage_register");
-  loaded_libraries().push_back(library);
+  auto* register_fn = reinterpret_cast<void (*)(Registrar&)>(const_cast<void*>(register_target));
   HostRegistrar registrar(*this, file);
   try {
     register_fn(registrar);
@@ -192,8 +203,10 @@ namespace {
 std::string unknown_type_message(const PluginRegistry& registry, std::string_view kind,
                                  std::string_view type) {
   if (const auto* other = registry.find_any_kind(type)) {
-    return "'" + std::string(type) + "' is a " + other->info.kind + " plug-in, not a " +
-           std::string(kind);
+    // Appended piece by piece: GCC 12 reports a false -Wrestrict on "'" + std::string(type) here.
+    std::string msg(1, '\'');
+    msg.append(type).append("' is a ").append(other->info.kind).append(" plug-in, not a ").append(kind);
+    return msg;
   }
   auto known = registry.types_of_kind(kind);
   std::string msg = "unknown " + std::string(kind) + " type '" + std::string(type) + "'";

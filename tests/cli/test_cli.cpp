@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "cli_run.hpp"
+#include "hostile_plugins.hpp"
 
 #include <sys/wait.h>
 
@@ -40,6 +41,23 @@ TEST_CASE("plumage plugins lists and describes the multilayer plug-in", "[cli]")
   r = run(std::string("--plugin-path ") + FIXTURE_DIR + " plugins");
   CHECK(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("problem:") && Catch::Contains("fixture_constant"));
+}
+
+TEST_CASE("a plug-in folder of truncated and garbage files stops no command", "[cli]") {
+  const auto folder = plumage::testing::make_hostile_plugin_folder(
+      scratch() / "hostile-plugins", fs::path(PLUMAGE_TEST_PLUGIN_DIR) / "libplumage_multilayer.so",
+      fs::path(FIXTURE_DIR) / "libplumage_fixture_good.so", fs::path(FIXTURE_DIR) / "libplumage_fixture_plainint.so");
+  auto r = run("--plugin-path " + folder.dir.string() + " plugins");
+  CHECK(r.status == 0);  // -1 if a signal killed it (SIGBUS, SIGSEGV before the probe)
+  CHECK_THAT(r.output, Catch::Contains("fixture_constant") && Catch::Contains("libplumage_multilayer.so"));
+  for (const auto& bad : folder.bad) {
+    INFO(bad.name);
+    CHECK_THAT(r.output, Catch::Contains("problem: " + (folder.dir / bad.name).string() + ": ") &&
+                             Catch::Contains(bad.reason));
+  }
+  // Any other command runs as well (before the probe, every command died in the scan).
+  r = run("--plugin-path " + folder.dir.string() + " check " + source("configs/species/rockdove.yaml"));
+  CHECK(r.status == 0);
 }
 
 TEST_CASE("plumage check accepts the shipped species and rejects bad files with file:line", "[cli]") {

@@ -1,6 +1,9 @@
 // Every way a plug-in can be refused gives a clear PluginError, never a crash.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
+#include "hostile_plugins.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/local_reflection.hpp"
 #include "plumage/plugin_registry.hpp"
@@ -46,7 +49,64 @@ TEST_CASE("a missing or non-ELF library is refused", "[plugins]") {
   PluginRegistry registry;
   CHECK_THROWS_WITH(registry.load_library("/no/such/libplumage_x.so"), Catch::Contains("no such plug-in library"));
   CHECK_THROWS_WITH(registry.load_library(fs::path(FIXTURE_DIR) / "libplumage_notalibrary.so"),
-                    Catch::Contains("cannot load as a shared library"));
+                    Catch::Contains("libplumage_notalibrary.so: not an ELF shared object"));
+}
+
+TEST_CASE("an ABI symbol that is not the PLUMAGE_PLUGIN alias is refused, not followed", "[plugins]") {
+  PluginRegistry registry;
+  // A plain int: read as the alias's pointer it would be an address near zero.
+  CHECK_THROWS_WITH(registry.load_library(fixture("plainint")),
+                    Catch::Contains("libplumage_fixture_plainint.so: not a plumage plug-in") &&
+                        Catch::Contains("'plumage_abi_version' is a 4-byte object, not the 8-byte alias"));
+  // Pointer-sized like the alias, but pointing at no object of the library.
+  CHECK_THROWS_WITH(registry.load_library(fixture("wildalias")),
+                    Catch::Contains("libplumage_fixture_wildalias.so: not a plumage plug-in") &&
+                        Catch::Contains("'plumage_abi_version' points outside this library's readable data"));
+  CHECK(registry.entries().empty());
+}
+
+namespace {
+fs::path real_plugin() { return fs::path(PLUMAGE_TEST_PLUGIN_DIR) / "libplumage_multilayer.so"; }
+}  // namespace
+
+TEST_CASE("a scan survives truncated, garbage and mistyped files and lists each as a problem", "[plugins][hostile]") {
+  const auto folder = plumage::testing::make_hostile_plugin_folder(
+      fs::temp_directory_path() / "plumage-test-plugin-loading" / "hostile", real_plugin(), fixture("good"),
+      fixture("plainint"));
+  PluginRegistry registry;
+  CHECK_NOTHROW(registry.load_directory(folder.dir));
+  REQUIRE(registry.find("local_reflection", "fixture_constant") != nullptr);
+  CHECK(registry.find("local_reflection", "fixture_constant")->library == folder.dir / "libplumage_good.so");
+  CHECK(registry.entries().size() == 2);  // the good fixture's two types, nothing from a bad file
+  CHECK(registry.problems().size() == folder.bad.size());
+  for (const auto& bad : folder.bad) {
+    INFO(bad.name);
+    const fs::path file = folder.dir / bad.name;
+    const auto problem = std::find_if(registry.problems().begin(), registry.problems().end(),
+                                      [&](const auto& p) { return p.library == file; });
+    REQUIRE(problem != registry.problems().end());
+    CHECK_THAT(problem->message, Catch::StartsWith(file.string() + ": ") && Catch::Contains(bad.reason));
+    // Asked for by name, the same file is a PluginError naming it (the command's exit 2).
+    PluginRegistry alone;
+    CHECK_THROWS_WITH(alone.load_library(file), Catch::StartsWith(file.string() + ": ") && Catch::Contains(bad.reason));
+  }
+}
+
+TEST_CASE("a plug-in without section headers is still accepted: the loader never reads them", "[plugins][hostile]") {
+  const fs::path dir = fs::temp_directory_path() / "plumage-test-plugin-loading" / "no-sections";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string bytes = plumage::testing::read_bytes(real_plugin());
+  Elf64_Ehdr header;
+  std::memcpy(&header, bytes.data(), sizeof header);
+  header.e_shoff = 0;
+  header.e_shnum = 0;
+  header.e_shstrndx = 0;
+  std::memcpy(bytes.data(), &header, sizeof header);
+  plumage::testing::write_bytes(dir / "libplumage_multilayer.so", bytes);
+  PluginRegistry registry;
+  CHECK_NOTHROW(registry.load_library(dir / "libplumage_multilayer.so"));
+  CHECK(registry.find("local_reflection", "multilayer") != nullptr);
 }
 
 TEST_CASE("a registration that throws is reported", "[plugins]") {
@@ -69,7 +129,7 @@ TEST_CASE("scanning a folder records problems and keeps the good plug-ins", "[pl
   PluginRegistry registry;
   CHECK_NOTHROW(registry.load_directory(FIXTURE_DIR));
   CHECK(registry.find("local_reflection", "fixture_constant") != nullptr);
-  CHECK(registry.problems().size() == 4);  // badabi, nosymbol, throws, notalibrary
+  CHECK(registry.problems().size() == 6);  // badabi, nosymbol, throws, notalibrary, plainint, wildalias
   // A second folder registering the same type is shadowed, first one wins.
   registry.load_directory(FIXTURE_DIR);
   CHECK(registry.entries().size() == 2);
