@@ -102,7 +102,7 @@ TEST_CASE("failed PNG writes name the path and leave nothing behind", "[image]")
   CHECK_THROWS_WITH(write_png(im, under_file), Catch::Contains(under_file.string()));
   CHECK(entries(dir) == 1);
 
-  // The target is a folder: the temporary file is written, the rename fails, the temporary goes.
+  // The target is a folder: refused before anything is written (plumage/atomic_file.hpp).
   fs::create_directories(dir / "occupied.png" / "inside");
   CHECK_THROWS_WITH(write_png(im, dir / "occupied.png"), Catch::Contains("occupied.png"));
   CHECK(entries(dir) == 2);

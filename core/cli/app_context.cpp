@@ -3,10 +3,20 @@
 #include <iostream>
 #include <memory>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/builtin_plugins.hpp"
 #include "progress.hpp"
 
 namespace plumage::cli {
+
+void check_output_flag(std::string_view flag, const std::string& path, const std::vector<std::string>& inputs,
+                       std::string_view role) {
+  if (path.empty()) return;
+  check_output_path(path, flag);
+  for (const std::string& input : inputs) check_output_not_input(path, flag, input, role);
+}
+
+void check_output_folder_flag(std::string_view flag, const std::string& path) { check_output_directory(path, flag); }
 
 const PluginRegistry& AppContext::registry() {
   if (!registry_) {

@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "plumage/local_reflection.hpp"
@@ -17,6 +18,15 @@ class UsageError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Output paths checked before any work (plumage/atomic_file.hpp; OutputPathError, exit status 2):
+// a file flag's path must not be a symlink, device, FIFO, socket or folder, nor one of `inputs`
+// (named as `role`: "shard", "species config");
+// a folder flag's path must not exist as anything but a folder. An empty path (flag not given)
+// passes.
+void check_output_flag(std::string_view flag, const std::string& path, const std::vector<std::string>& inputs = {},
+                       std::string_view role = "input");
+void check_output_folder_flag(std::string_view flag, const std::string& path);
 
 class AppContext {
  public:

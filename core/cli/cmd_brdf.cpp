@@ -57,6 +57,7 @@ std::vector<IncidentAngles> parse_incidents(const std::string& text) {
 }
 
 void plot(const AppContext& context, const PlotOptions& o) {
+  check_output_flag("--out", o.out, {o.file}, "material");
   if (o.instances < 0 || o.instances > 16) throw UsageError("--instances must be in 0..16");
   if (o.size < 16 || o.size > 2048) throw UsageError("--size must be in 16..2048");
   if (o.exposure < 0.0) throw UsageError("--exposure must be > 0 (or 0 for automatic)");

@@ -66,6 +66,9 @@ void print_plan(const CharacterizeSettings& s, const CharacterizePlan& plan) {
 }
 
 void run(AppContext& context, const Options& o) {
+  check_output_flag("--out", o.out, {o.config}, "species config");
+  check_output_flag("--record", o.record, {o.config}, "species config");
+  check_output_folder_flag("--diagnostics", o.diagnostics);
   const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
   const CharacterizeSettings s = characterize_settings(config, context.registry(), o.fidelity, read_overrides(o));
   CharacterizeOptions options;

@@ -50,6 +50,7 @@ void print_summary(const Comparison& c, const std::vector<MethodRun>& runs, cons
 }
 
 void run(AppContext& context, const Options& o) {
+  check_output_folder_flag("--out", o.out);
   Comparison c = load_comparison(o.config, context.registry());
   select_in_comparison(c, o.selection);
   const fs::path out_dir = o.out.empty() ? fs::path(c.name + "-compare") : fs::path(o.out);

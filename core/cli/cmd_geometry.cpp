@@ -8,6 +8,7 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "plumage/atomic_file.hpp"
 #include "plumage/instance_geometry.hpp"
 #include "plumage/species_config.hpp"
 
@@ -30,6 +31,7 @@ void run(AppContext& context, const Options& o) {
   if (o.instances < 1) throw UsageError("--instances must be at least 1");
   if (o.first < 0) throw UsageError("--first must be >= 0");
   if (o.out.empty() && !o.stats) throw UsageError("give --out DIR and/or --stats");
+  check_output_folder_flag("--out", o.out);
   SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
   context.warn_about_problems();
   if (!config.structure) {
@@ -60,7 +62,7 @@ void run(AppContext& context, const Options& o) {
   }
   // Everything generated and valid: now write.
   if (!o.out.empty()) {
-    std::filesystem::create_directories(o.out);
+    create_output_directory(o.out, "--out");
     for (const CrossSection& cs : sections) {
       write_cross_section_files(cs, std::filesystem::path(o.out) / (stem + "-" + std::to_string(cs.instance)), o.pictures);
     }

@@ -16,6 +16,7 @@ struct Options {
 };
 
 void run(AppContext& context, const Options& o) {
+  check_output_flag("--out", o.out, o.shards, "shard");  // merge X --out X would overwrite a shard
   const std::vector<std::filesystem::path> shards(o.shards.begin(), o.shards.end());
   const MergeResult merged = merge_shards(shards, o.out);
   if (!context.quiet) {

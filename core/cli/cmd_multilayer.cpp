@@ -29,6 +29,7 @@ struct Row {
 };
 
 void run(AppContext& context, const Options& o) {
+  check_output_flag("--plot", o.plot);
   LayerProfile profile;
   try {
     profile = parse_stack_text(o.stack);

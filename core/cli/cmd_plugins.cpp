@@ -79,6 +79,7 @@ void add_plugins_command(CLI::App& app, AppContext& context) {
   describe->callback([&context, type, markdown, out] {
     if (*markdown) {
       if (!type->empty()) throw UsageError("--markdown describes every type; give no type with it");
+      check_output_flag("--out", *out);
       const std::string text = parameters_markdown(context.registry());
       if (out->empty()) std::cout << text;
       else write_text_atomically(*out, text);

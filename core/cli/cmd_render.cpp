@@ -85,6 +85,7 @@ void print_written(const RenderedView& v) {
 }
 
 void run(AppContext& context, const Options& o) {
+  check_output_folder_flag("--out", o.out);
   const auto wall0 = std::chrono::steady_clock::now();
   RenderJob job(o.scene, job_options(o), context.registry());
   const SceneConfig& config = job.config();

@@ -28,6 +28,9 @@ struct Options {
 };
 
 void run(AppContext& context, const Options& o) {
+  check_output_flag("--out", o.out, {o.config}, "species config");
+  check_output_flag("--pattern", o.pattern, {o.config}, "species config");
+  check_output_flag("--csv", o.csv, {o.config}, "species config");
   const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
   SimulationRequest request;
   if (!o.lambda_nm.empty()) request.lambdas_nm = parse_samples(o.lambda_nm, "--lambda-nm");

@@ -27,6 +27,8 @@ void run(AppContext& context, const Options& o) {
     if (t < 0 || t > 90) throw UsageError("--theta-deg: angles must be in [0, 90]");
   }
   // Validate everything before computing or writing anything.
+  check_output_flag("--plot", o.plot, o.configs, "species config");
+  check_output_flag("--csv", o.csv, o.configs, "species config");
   std::vector<SpeciesConfig> species;
   for (const auto& file : o.configs) species.push_back(load_species_config(file, context.registry(), o.variant));
 

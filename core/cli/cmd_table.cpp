@@ -42,6 +42,7 @@ struct PlotOptions {
 };
 
 void build(AppContext& context, BuildOptions o) {
+  check_output_flag("--out", o.out, {o.config}, "crystal config");
   o.request.crystal_config = o.config;
   o.request.out = o.out;
   o.request.resolution_nm = o.resolution_nm;
@@ -107,6 +108,7 @@ void query(const QueryOptions& o) {
 }
 
 void plot(const PlotOptions& o) {
+  check_output_flag("--out", o.out, {o.file}, "table");
   const ReflectionTable t = load_input_table(o.file);
   const auto& L = t.grid().lambda_nm;
   LineChart chart;

@@ -1,8 +1,10 @@
 // `plumage`: the command-line front end. Exit status 0 on success, 2 for bad input (config,
-// plug-in or command line; nothing is written), 1 for any other failure.
+// plug-in, command line, or an output path that would destroy something; nothing is written), 1
+// for any other failure.
 #include <iostream>
 
 #include "commands.hpp"
+#include "plumage/atomic_file.hpp"
 #include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 #include "plumage/version.hpp"
@@ -55,6 +57,9 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const plumage::PluginError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const plumage::OutputPathError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const UsageError& e) {

@@ -11,7 +11,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+
+#include <sys/stat.h>
 
 namespace fs = std::filesystem;
 using plumage::cli_test::Result;
@@ -123,6 +126,55 @@ TEST_CASE("a failing run writes nothing", "[cli]") {
   CHECK(r.status == 2);
   CHECK_THAT(r.output, Catch::Contains("bad_model.yaml:3:21"));
   CHECK_FALSE(fs::exists(csv));
+}
+
+namespace {
+
+std::string file_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+TEST_CASE("--out never replaces a symlink or a FIFO, and merge never overwrites its input", "[cli][out-paths]") {
+  const fs::path dir = plumage::cli_test::fresh_scratch_path("plumage-test-cli", "out-paths");
+  fs::create_directories(dir);
+  const fs::path real = dir / "real.md", link = dir / "link.md", fifo = dir / "pipe.md";
+  std::ofstream(real) << "keep me\n";
+  fs::create_symlink(real, link);
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+
+  auto r = run("plugins describe --markdown --out " + link.string());
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("--out " + link.string()) && Catch::Contains("symlink (to " + real.string()));
+  CHECK(fs::is_symlink(fs::symlink_status(link)));
+  CHECK(fs::read_symlink(link) == real);
+  CHECK(file_bytes(real) == "keep me\n");
+
+  r = run("plugins describe --markdown --out " + fifo.string());
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("--out " + fifo.string()) && Catch::Contains("FIFO"));
+  CHECK(fs::is_fifo(fs::symlink_status(fifo)));
+
+  // Refused before the shard is read: its bytes stay as they were, whatever they are.
+  const fs::path shard = dir / "shard.plmshard";
+  std::ofstream(shard, std::ios::binary) << "plumage shard bytes\n";
+  const std::string before = file_bytes(shard);
+  r = run("merge " + shard.string() + " --out " + shard.string());
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains("--out " + shard.string()) && Catch::Contains("is also an input (shard " + shard.string()));
+  CHECK(file_bytes(shard) == before);
+  // The same file under another name (a hard link) is still the input.
+  fs::create_hard_link(shard, dir / "alias.plm");
+  r = run("merge " + shard.string() + " --out " + (dir / "alias.plm").string());
+  CHECK(r.status == 2);
+  CHECK(file_bytes(shard) == before);
+  r = run("merge " + shard.string() + " --out " + fifo.string());
+  CHECK(r.status == 2);
+  CHECK(fs::is_fifo(fs::symlink_status(fifo)));
+  // Only the files made above: nothing written beside them.
+  CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 5);
 }
 
 TEST_CASE("plumage multilayer prints the Airy reflection of a film", "[cli]") {

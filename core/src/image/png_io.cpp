@@ -48,6 +48,8 @@ void write_png(const Image& image, const fs::path& path) {
           out.write(reinterpret_cast<const char*>(encoded.data()), static_cast<std::streamsize>(size));
         },
         /*binary=*/true);
+  } catch (const OutputPathError&) {
+    throw;  // bad input, not a failed write: keeps its type (exit status 2)
   } catch (const std::exception& e) {
     throw Error(path.string() + ": cannot write PNG (" + e.what() + ")");
   }

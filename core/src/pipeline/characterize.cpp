@@ -2,6 +2,7 @@
 // shard file or the records of every rank assembled into the material on rank 0.
 #include "plumage/characterize.hpp"
 
+
 #include <chrono>
 #include <ctime>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include "fit_report.hpp"
 #include "journal.hpp"
 #include "mpi_distribution.hpp"
+#include "plumage/atomic_file.hpp"
 #include "plumage/diagnostics.hpp"
 #include "records.hpp"
 #include "warning_attribution.hpp"
@@ -101,6 +103,7 @@ CharacterizeResult run(const SpeciesConfig& config, const CharacterizeSettings& 
   // Everything this part owns, read back from its journal (the bytes that shards and ranks ship).
   const JournalContents mine = read_journal(part.plan.journal);
   if (o.shard) {
+    check_output_path(out);  // rename(2) would replace a symlink or device put there meanwhile
     fs::rename(part.plan.journal, out);  // a complete shard file
     result.shard_written = true;
     result.shard_groups = mine.records.size();
@@ -127,6 +130,10 @@ CharacterizeResult characterize(const SpeciesConfig& config, const CharacterizeS
                                 const std::function<void(const CharacterizePlan&)>& on_plan) {
   if (!config.structure)
     throw ConfigError({config.file.string(), 0, 0}, "structure", "no `structure:` section to characterise");
+  // Output paths before any work: never replace a symlink, device or folder, nor the species file.
+  check_output_path(out, "output");
+  check_output_not_input(out, "output", config.file, "species config");
+  check_output_directory(options.diagnostics_dir, "diagnostics folder");
   const Ranks& ranks =
       options.distribution == CharacterizeOptions::Distribution::automatic ? launch_ranks() : single_rank();
   try {
@@ -135,7 +142,7 @@ CharacterizeResult characterize(const SpeciesConfig& config, const CharacterizeS
     // One rank's failure ends the launch (the others would wait in the gather forever).
     if (ranks.active()) {
       std::cerr << "rank " << ranks.rank() << ": " << e.what() << "\n";
-      ranks.abort(dynamic_cast<const ConfigError*>(&e) ? 2 : 1);
+      ranks.abort(dynamic_cast<const ConfigError*>(&e) || dynamic_cast<const OutputPathError*>(&e) ? 2 : 1);
     }
     throw;
   }

@@ -48,7 +48,7 @@ std::vector<FitDiagnostic> fit_diagnostic_units(const CharacterizeSettings& s) {
 
 void write_fit_diagnostics(const std::filesystem::path& dir, const CharacterizeSettings& s,
                            const std::vector<FitDiagnostic>& units, const std::string& summary) {
-  std::filesystem::create_directories(dir);
+  create_output_directory(dir);
   LineChart chart;
   chart.title = s.label + ": simulated mean pattern U vs GGX fit on the cone (" + s.fidelity + ")";
   chart.x_label = "phi_o (deg)";

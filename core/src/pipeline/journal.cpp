@@ -1,5 +1,6 @@
 // Journals and shard files of a characterisation: a text header and appended, checksummed work
 // records (characterize_records.hpp; layout: docs/formats.md).
+#include "plumage/atomic_file.hpp"
 #include "journal.hpp"
 
 #include <fcntl.h>
@@ -83,6 +84,7 @@ JournalContents read_journal(const std::filesystem::path& file) {
 JournalWriter::JournalWriter(const std::filesystem::path& file, const CharacterizeSettings& s, std::uintmax_t valid_bytes)
     : file_(file) {
   const bool fresh = valid_bytes == 0;
+  check_output_path(file);  // open(2) would write through a symlink or into a device
   if (!fresh) std::filesystem::resize_file(file, valid_bytes);  // drop a torn tail
   fd_ = ::open(file.c_str(), O_WRONLY | O_CREAT | O_APPEND | (fresh ? O_TRUNC : 0), 0644);
   if (fd_ < 0) throw Error(file.string() + ": cannot open journal for writing: " + std::strerror(errno));
@@ -107,6 +109,7 @@ void JournalWriter::append(const GroupRecord& r) {
 
 JournalResume read_journal_resume(const std::filesystem::path& journal, const CharacterizeSettings& s) {
   JournalResume resume;
+  check_output_path(journal);  // reading a FIFO would hang; a symlinked journal is refused anyway
   if (!std::filesystem::exists(journal)) return resume;
   const JournalContents j = read_journal(journal);
   resume.fingerprint = j.fingerprint;

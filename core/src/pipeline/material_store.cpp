@@ -1,5 +1,6 @@
 // The material store (material_store.hpp): materials found by their key in .plm headers, else
 // characterised at preview fidelity and cached.
+#include "plumage/atomic_file.hpp"
 #include "plumage/material_store.hpp"
 
 #include <algorithm>
@@ -150,7 +151,7 @@ ResolvedMaterial MaterialStore::resolve(const MaterialRequest& q) const {
 
 ResolvedMaterial MaterialStore::characterise(const SpeciesConfig& config, const CharacterizeSettings& s,
                                              const fs::path& out) const {
-  fs::create_directories(options_.directory);
+  create_output_directory(options_.directory);
   CharacterizeOptions o;
   o.preparation = options_.preparation;
   o.distribution = CharacterizeOptions::Distribution::single_process;

@@ -2,10 +2,15 @@
 // records assembled by the same code as a single run, so the bytes are identical.
 #include "plumage/characterize.hpp"
 
+#include "plumage/atomic_file.hpp"
+
 namespace plumage {
 
 MergeResult merge_shards(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out) {
   if (shards.empty()) throw ConfigError({"command line", 0, 0}, "shards", "no shard files to merge");
+  // Before reading: the output must not replace a symlink or device, nor any of the shards.
+  check_output_path(out, "output");
+  for (const auto& file : shards) check_output_not_input(out, "output", file, "shard");
   std::vector<GroupRecord> records;
   std::string fingerprint, inputs, config_hash;
   for (const auto& file : shards) {
@@ -30,6 +35,8 @@ MergeResult merge_shards(const std::vector<std::filesystem::path>& shards, const
   result.settings = CharacterizeSettings::from_fingerprint(fingerprint, config_hash, inputs);
   try {
     write_feather_material(out, assemble_material(result.settings, records));
+  } catch (const OutputPathError&) {
+    throw;  // bad input, not a failed write: keeps its type (exit status 2)
   } catch (const Error& e) {
     throw Error(std::string("merge: ") + e.what());
   }

@@ -47,8 +47,8 @@ void draw_script_chart(const std::string& script_name, const std::vector<std::st
                        const fs::path& png, const std::string& title,
                        const std::vector<std::string>& extra_args) {
   const fs::path script = data_directory() / script_name;
-  fs::path dir = png.parent_path();
-  if (!dir.empty()) fs::create_directories(dir);
+  check_output_path(png);
+  create_output_directory(png.parent_path());
   const fs::path temp_png = fs::path(png).concat(".tmp.png");
   const std::string python = python_interpreter();
   std::vector<std::string> args{python, script.string()};
@@ -65,6 +65,7 @@ void draw_script_chart(const std::string& script_name, const std::vector<std::st
                 " exited with status " + std::to_string(status) +
                 "; is python3-matplotlib installed?)");
   }
+  check_output_path(png);  // again: the drawing took a while
   fs::rename(temp_png, png);
 }
 

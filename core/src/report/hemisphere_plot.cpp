@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/brdf_report.hpp"
 #include "plumage/charts.hpp"
 #include "plumage/conventions.hpp"
@@ -88,8 +89,9 @@ HemispherePanels hemisphere_panels(std::shared_ptr<const FeatherMaterial> materi
 
 void write_hemisphere_figure(const HemispherePanels& p, const HemispherePlotOptions& o, const FeatherMaterial& material,
                              const fs::path& png) {
+  check_output_path(png);
   const fs::path dir = fs::path(png).concat(".panels.tmp");
-  fs::create_directories(dir);
+  create_output_directory(dir);
   std::ofstream manifest(dir / "manifest.csv");
   manifest << "row,col,title,file\n";
   const Rgb8 background{48, 48, 48};

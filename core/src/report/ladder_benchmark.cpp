@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/benchmark.hpp"
 #include "plumage/charts.hpp"
 #include "plumage/diagnostics.hpp"
@@ -47,6 +48,11 @@ class LadderBenchmark final : public Benchmark {
     const auto say = [&](const std::string& line) {
       if (options.progress) options.progress(line);
     };
+    // Output paths first: nothing runs for outputs that would be refused.
+    check_output_directory(params_.out);
+    check_output_path(fs::path(params_.out) / "ladder.csv");
+    check_output_path(fs::path(params_.out) / "ladder.png");
+    check_output_path(params_.chart_copy);  // outside draw_chart, whose errors become warnings
     std::vector<LadderRow> rows = run_accuracy_ladders(
         registry_, params_.only, params_.quick,
         [&](const std::string& name) { say("ladder " + name + (params_.quick ? " (quick)" : "")); },
@@ -55,7 +61,7 @@ class LadderBenchmark final : public Benchmark {
     mark_pareto(rows);
 
     const fs::path dir(params_.out);
-    fs::create_directories(dir);
+    create_output_directory(dir);
     const fs::path csv = dir / "ladder.csv";
     const fs::path png = dir / "ladder.png";
     write_ladder_csv(rows, csv);
@@ -80,7 +86,7 @@ class LadderBenchmark final : public Benchmark {
       draw_script_chart("plot_ladder.py", {csv.string()}, png,
                         std::string("Accuracy against cost, every backend") + (params_.quick ? " (quick)" : ""));
       if (params_.chart_copy.empty()) return "";
-      fs::create_directories(fs::path(params_.chart_copy).parent_path());
+      create_output_directory(fs::path(params_.chart_copy).parent_path());
       fs::copy_file(png, params_.chart_copy, fs::copy_options::overwrite_existing);
       return "![ladder](" + fs::path(params_.chart_copy).lexically_relative(record.parent_path()).string() + ")";
     } catch (const Error& e) {

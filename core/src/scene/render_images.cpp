@@ -3,6 +3,7 @@
 #include <map>
 #include <string>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/diagnostics.hpp"
 #include "plumage/exr.hpp"
 #include "plumage/image.hpp"
@@ -15,6 +16,8 @@ namespace fs = std::filesystem;
 void write_render_images(const RenderResult& r, double png_exposure, const fs::path& exr, const fs::path& png) {
   const fs::path tmp_exr = fs::path(exr).concat(".partial.exr"), tmp_png = fs::path(png).concat(".partial.png");
   bool exr_in_place = false;
+  check_output_path(exr);
+  check_output_path(png);
   try {
     // The run's warnings (plumage/diagnostics.hpp: materials' own warnings included) travel with
     // the image.
@@ -25,6 +28,9 @@ void write_render_images(const RenderResult& r, double png_exposure, const fs::p
     const float e = static_cast<float>(png_exposure);
     for (RgbF& p : scaled.pixels()) p = {p.r * e, p.g * e, p.b * e};
     write_png(to_display(scaled), tmp_png);
+    // Checked again at the rename (rename(2) would replace a symlink or device put there meanwhile).
+    check_output_path(exr);
+    check_output_path(png);
     fs::rename(tmp_exr, exr);
     exr_in_place = true;
     fs::rename(tmp_png, png);

@@ -1,5 +1,6 @@
 // The render pipeline (render_job.hpp): scene → renderer from its own section → meshes →
 // materials → one Scene per view → EXR + PNG.
+#include "plumage/atomic_file.hpp"
 #include "plumage/render_job.hpp"
 
 #include <tbb/global_control.h>
@@ -127,6 +128,10 @@ RenderedView RenderJob::render_view(std::size_t k, const fs::path& out_dir, cons
   Scene scene = make_scene(s.config, *s.views.at(k), last_use ? std::move(s.meshes) : s.meshes);
   s.meshes_moved = last_use;
   const ThreadCap cap(s.options.max_threads);
+  // Output paths before the render, which may take hours.
+  check_output_directory(out_dir);
+  check_output_path(out_dir / (scene.name + ".exr"));
+  check_output_path(out_dir / (scene.name + ".png"));
   const std::clock_t cpu0 = std::clock();
   const RenderResult result = s.renderer->render(scene, progress);
   RenderedView out;
@@ -136,7 +141,7 @@ RenderedView RenderJob::render_view(std::size_t k, const fs::path& out_dir, cons
   out.png = out_dir / (scene.name + ".png");
   out.width = scene.camera.width, out.height = scene.camera.height;
   out.stats = result.stats;
-  fs::create_directories(out_dir);
+  create_output_directory(out_dir);
   write_render_images(result, s.config.exposure, out.exr, out.png);
   return out;
 }

@@ -6,6 +6,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/diagnostics.hpp"
@@ -45,6 +46,10 @@ void append_run_warnings(std::string& notes) {
 
 TableBuildResult build_table_file(const TableBuildRequest& request, const PluginRegistry& registry,
                                   const TableBuilder::Progress& progress) {
+  // Output paths before any work: the table, its checkpoint, never the crystal file itself.
+  check_output_path(request.out, "output");
+  check_output_path(request.out.string() + ".partial", "checkpoint");
+  check_output_not_input(request.out, "output", request.crystal_config, "crystal config");
   const CrystalCell cell = load_crystal_cell(request.crystal_config);
   const TableGridSize preset = request.fidelity == "preview" ? kPreviewTableGrid : kProductionTableGrid;
   const TableGridSize grid{request.grid.n_lambda > 0 ? request.grid.n_lambda : preset.n_lambda,

@@ -9,6 +9,7 @@
 #include <functional>
 #include <fstream>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 #include "radiation.hpp"
@@ -281,6 +282,7 @@ std::vector<FarField> BemSolver::solve(const Prepared& prepared, double lambda_n
   const Eigen::MatrixXcd E = F * X;
   const double far_s = seconds_since(t0);
   if (!options_.log_file.empty()) {
+    check_output_path(options_.log_file);
     std::ofstream log(options_.log_file, std::ios::app);
     log << "lambda_nm " << lambda_nm << " theta_deg " << theta * 180.0 / std::numbers::pi << " unknowns " << n
         << " segments " << mesh.segments.size() << " assembly_s " << sys->assembly_seconds << " factor_s "

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "builder_params.hpp"
+#include "plumage/atomic_file.hpp"
 #include "plumage/bench_record.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/conventions.hpp"
@@ -128,7 +129,7 @@ Benchmark::Report FdtdBenchmark::run(const Options& options) const {
       ReflectionTable t = full.table;
       std::ifstream in(b.config, std::ios::binary);
       t.metadata().config_hash = fnv1a_hex(std::string(std::istreambuf_iterator<char>(in), {}));
-      std::filesystem::create_directories(std::filesystem::absolute(b.out).parent_path());
+      create_output_directory(std::filesystem::absolute(b.out).parent_path());
       t.save(b.out);
       if (options.progress) options.progress("wrote " + b.out);
     }

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "build_steps.hpp"
+#include "plumage/atomic_file.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
 
@@ -67,6 +68,7 @@ Checkpoint::Checkpoint(const Options& opt, double ax_um, const fdtd::SimParams& 
                        const std::vector<double>& omegas, const std::vector<fdtd::Job>& jobs,
                        std::vector<fdtd::Spectrum>& spectra, std::vector<char>& have, std::vector<unsigned>& run_flags) {
   if (opt.checkpoint.empty()) return;
+  check_output_path(opt.checkpoint);  // rewritten below; reading a FIFO would hang
   const std::string header = header_of(opt, ax_um, sim, k_step, omegas, jobs);
   {
     std::ifstream in(opt.checkpoint, std::ios::binary);

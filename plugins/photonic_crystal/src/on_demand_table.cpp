@@ -5,6 +5,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
 #include "plumage/plugin_registry.hpp"
@@ -99,7 +100,7 @@ ReflectionTable OnDemandTable::build(bool preview, const TableBuilder::Progress&
   ReflectionTable t = builder(preview).build(cell_, grid, progress);
   t.metadata().config_hash = config_hash_;
   const fs::path out(file(preview));
-  fs::create_directories(out.parent_path());
+  create_output_directory(out.parent_path());
   t.save(out);  // atomic (ReflectionTable::save)
   return t;
 }

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/charts.hpp"
 #include "plumage/colour.hpp"
 #include "plumage/comparison_report.hpp"
@@ -98,6 +99,7 @@ void write_strip_inputs(const Comparison& c, const std::vector<MethodRun>& runs,
 
 void draw_strips(const Comparison& c, const std::vector<MethodRun>& runs, std::size_t i, const std::string& title,
                  const fs::path& png) {
+  check_output_path(png);  // before the temporaries beside it
   const fs::path strips_csv = fs::path(png).concat(".strips.csv.tmp");
   const fs::path lines_csv = fs::path(png).concat(".lines.csv.tmp");
   try {

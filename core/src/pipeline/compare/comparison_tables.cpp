@@ -134,7 +134,7 @@ ComparisonFiles write_comparison_tables(const Comparison& c, const std::vector<M
   const std::string metrics_text = comparison_metrics_csv(c, metrics);
   const std::string patterns_text = comparison_patterns_csv(c, runs);
   const std::string times_text = comparison_times_csv(c, runs);
-  fs::create_directories(out_dir);
+  create_output_directory(out_dir);
   const fs::path base = out_dir / c.name;
   ComparisonFiles files{fs::path(base).concat("-metrics.csv"), fs::path(base).concat("-patterns.csv"),
                         fs::path(base).concat("-times.csv")};

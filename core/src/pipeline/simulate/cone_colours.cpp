@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/charts.hpp"
 #include "plumage/colour.hpp"
 #include "plumage/conventions.hpp"
@@ -90,6 +91,7 @@ void write_inputs(const std::vector<const FarFieldUnit*>& units, const fs::path&
 void draw_cone_colours(const FarFieldSet& set, const fs::path& png, const std::string& title) {
   const auto units = first_direction_units(set);
   if (units.size() < 2) throw Error("the colour along the cone needs at least two wavelengths");
+  check_output_path(png);  // before the temporaries beside it
   const auto strips_csv = fs::path(png).concat(".strips.csv.tmp");
   const auto lines_csv = fs::path(png).concat(".lines.csv.tmp");
   try {
