@@ -2,8 +2,6 @@
 #include "plumage/table_build.hpp"
 
 #include <algorithm>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include "plumage/atomic_file.hpp"
@@ -16,12 +14,6 @@
 namespace plumage {
 
 namespace {
-
-std::string read_text(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("cannot read " + file.string());
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
 
 bool declares(const PluginRegistry& registry, const std::string& builder, std::string_view name) {
   const PluginRegistry::Entry* entry = registry.find(TableBuilder::plugin_kind, builder);
@@ -68,7 +60,7 @@ TableBuildResult build_table_file(const TableBuildRequest& request, const Plugin
   ReflectionTable table = builder->build(
       cell, TableGrid::uniform(request.lambda_min_nm, request.lambda_max_nm, grid.n_lambda, grid.n_theta, grid.n_phi),
       progress);
-  table.metadata().config_hash = fnv1a_hex(read_text(request.crystal_config));
+  table.metadata().config_hash = ConfigDocument::load(request.crystal_config).content_hash();  // of the file's bytes
   append_run_warnings(table.metadata().notes);
   table.save(request.out.string());
   if (resumable) std::filesystem::remove(partial);
