@@ -133,6 +133,13 @@ TEST_CASE("warning sites: the material says where and how much", "[warnings]") {
   CHECK_FALSE(parsed[0].contains(1.0, 1.0));  // normal incidence
   CHECK_FALSE(parsed[1].directional());
   CHECK(material_warning_summaries(text).find(" cells: ") == std::string::npos);
+  // Rows that reach further from the horizon toward grazing incidence: said at both ends.
+  std::vector<std::uint8_t> widening(16, 0);
+  widening[3 * 4 + 0] = 1;                      // row 4 (theta_i 0): b = 1
+  widening[1 * 4 + 0] = widening[1 * 4 + 1] = 1;  // row 2 (theta_i 60): b = 1, 2
+  CHECK(describe_cells(4, widening) ==
+        "|phi_i| >= 75.5 deg at theta_i 0.0 deg, widening to |phi_i| >= 60.0 deg at theta_i 60.0 deg");
+  CHECK(format_cells(4, widening) == "2:1-2 4:1-1");
   // A material written before issue 23: entries, none directional.
   const auto old = parse_material_warnings(
       "approx.grazing: raised while computing 100 of 100 work groups, first at lambda = 400 nm, cos theta_i = 1/10\n", 10);

@@ -99,8 +99,10 @@ std::string format_cells(int grid, const std::vector<std::uint8_t>& cells) {
 }
 
 // θ_i = acos(a/G), φ_i = acos(b/G): small a and b are the grazing side. Rows 1 … A flagged at every
-// azimuth are said once ("theta_i >= θ(A) at every phi_i"); of the other flagged cells, the
-// largest column b gives the smallest |φ_i| reached and their rows the θ_i span.
+// azimuth are said once ("theta_i >= θ(A) at every phi_i"); of each other flagged row, its largest
+// flagged column gives the smallest |φ_i| reached there, said for the rows nearest to and
+// farthest from normal incidence ("|phi_i| >= 72.5 deg at theta_i 0.0 deg, widening to
+// |phi_i| >= 36.9 deg at theta_i 84.3 deg"), or once with the θ_i span when every row agrees.
 std::string describe_cells(int grid, const std::vector<std::uint8_t>& cells) {
   if (grid < 1 || cells.empty()) return "";
   auto flagged = [&](int a, int b) { return cells[static_cast<std::size_t>(a - 1) * grid + (b - 1)] != 0; };
@@ -111,18 +113,26 @@ std::string describe_cells(int grid, const std::vector<std::uint8_t>& cells) {
     if (!all) break;
     ++full;
   }
-  int b_max = 0, a_lo = grid + 1, a_hi = 0;
+  int a_lo = 0, a_hi = 0, b_lo = 0, b_hi = 0;  // rows nearest grazing / normal and their largest b
+  bool same = true;
   for (int a = full + 1; a <= grid; ++a) {
-    for (int b = 1; b <= grid; ++b) {
-      if (!flagged(a, b)) continue;
-      b_max = std::max(b_max, b), a_lo = std::min(a_lo, a), a_hi = std::max(a_hi, a);
-    }
+    int b_max = 0;
+    for (int b = 1; b <= grid; ++b)
+      if (flagged(a, b)) b_max = b;
+    if (b_max == 0) continue;
+    if (a_lo == 0) a_lo = a, b_lo = b_max;
+    if (a_hi != 0 && b_max != b_hi) same = false;
+    a_hi = a, b_hi = b_max;
+    same = same && b_max == b_lo;
   }
   std::string out;
   if (full > 0) out = "theta_i >= " + degrees(full, grid) + " deg at every phi_i";
-  if (b_max > 0) {
-    out += (out.empty() ? "" : "; ") + std::string("|phi_i| >= ") + degrees(b_max, grid) + " deg at theta_i " +
-           degrees(a_hi, grid) + "-" + degrees(a_lo, grid) + " deg";
+  if (a_lo > 0) {
+    if (!out.empty()) out += "; ";
+    out += "|phi_i| >= " + degrees(b_hi, grid) + " deg at theta_i ";
+    if (same) out += degrees(a_hi, grid) + "-" + degrees(a_lo, grid) + " deg";
+    else out += degrees(a_hi, grid) + " deg, widening to |phi_i| >= " + degrees(b_lo, grid) + " deg at theta_i " +
+                degrees(a_lo, grid) + " deg";
   }
   return out.empty() ? "none" : out;
 }
