@@ -112,7 +112,7 @@ TEST_CASE("reader hardening: .plm content is validated after the checksum", "[re
   REQUIRE(read_feather_material(good_file).nodes[5].phi_sta == 0.123456789);  // valid files still read
   const auto read = [](const fs::path& f) { (void)read_feather_material(f); };
   expect_refused(file, good, [](std::string& d) { replace_once(d, raw(0.123456789), raw(kNaN)); }, read,
-                 {"phi_sta", "node 5", "not"});
+                 {"phi_sta", "node 5", "nan"});
   expect_refused(file, good, [](std::string& d) { replace_once(d, raw(0.123456789), raw(1e9)); }, read,
                  {"phi_sta", "expected in"});
   expect_refused(file, good, [](std::string& d) { replace_once(d, raw(0.4242f), raw(std::numeric_limits<float>::quiet_NaN())); },
