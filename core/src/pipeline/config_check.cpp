@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <functional>
+#include <optional>
 
 #include "plumage/comparison.hpp"
 #include "plumage/config_document.hpp"

@@ -50,7 +50,7 @@ void read_wavelengths(const ParamView& section, CharacterizeOverrides& o) {
   for (std::size_t k = 0; k < lambda.size(); ++k) {
     if (!range.admits(lambda[k]))
       section.fail("lambda_nm", "wavelength " + format_param_number(lambda[k]) + " nm is out of range: must be " + range.describe());
-    if (k && lambda[k] <= lambda[k - 1]) section.fail("lambda_nm", "wavelengths must be ascending");
+    if (k && lambda[k] <= lambda[k - 1]) section.fail("lambda_nm", "wavelengths must be positive and ascending");
   }
   if (lambda.empty()) section.fail("lambda_nm", "no wavelengths");
   o.lambda_nm = std::move(lambda);

@@ -29,17 +29,20 @@ std::string describe(const ParamSpec& spec, bool defaulted) {
   return out;
 }
 
-// A default that is a value (a number, a switch, an interval or list, ""), not a description.
-bool is_value(const std::string& text) {
-  if (text.empty()) return false;
+// A default that is a value (a number, a switch, an interval or list, "", a word of a choice or
+// text), not a description such as "the preset's".
+bool is_value(const ParamSpec& spec) {
+  const std::string& text = spec.default_value;
+  if (text.empty() || text.rfind("required", 0) == 0) return false;
   if (text == "true" || text == "false" || text == "\"\"" || text == "{}") return true;
+  if ((spec.type == "choice" || spec.type == "text") && text.find(' ') == std::string::npos) return true;
   const char c = text.front();
   return c == '[' || c == '-' || std::isdigit(static_cast<unsigned char>(c));
 }
 
 void emit_default(YAML::Emitter& out, const std::string& key, const ParamSpec& spec) {
   out << YAML::Key << key << YAML::Value;
-  if (is_value(spec.default_value)) {
+  if (is_value(spec)) {
     out << YAML::Load(spec.default_value) << YAML::Comment(describe(spec, true));
   } else {
     out << YAML::Null << YAML::Comment("default: " + spec.default_value + "; " + describe(spec, false));

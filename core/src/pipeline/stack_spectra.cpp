@@ -15,7 +15,7 @@ namespace {
 
 // The stack a species' spectrum is drawn from: its nominal_stack; for a variant that changed its
 // structure but not its nominal_stack (SpeciesConfig::nominal_stack_from_structure), the stack
-// under the apex (highest top vertex) of its own instance 0, so that the spectrum is the
+// under the apex (highest top vertex, largest z) of its own instance 0, so that the spectrum is the
 // variant's and not the base's. Empty when there is neither (or the structure has no layered model).
 std::optional<LayerProfile> spectrum_stack(const SpeciesConfig& s) {
   if (s.nominal_stack) return s.nominal_stack;
@@ -24,7 +24,7 @@ std::optional<LayerProfile> spectrum_stack(const SpeciesConfig& s) {
   if (!section.layered || section.top.empty()) return std::nullopt;
   std::size_t apex = 0;
   for (std::size_t i = 1; i < section.top.size(); ++i)
-    if (section.top[i].y > section.top[apex].y) apex = i;
+    if (section.top[i].z > section.top[apex].z) apex = i;
   return layer_profile_at(section, apex);
 }
 
