@@ -62,7 +62,7 @@ std::vector<double> parse_wavelengths(std::string_view text, std::string_view op
   for (double l : out) {
     if (!range.admits(l)) {
       throw UsageError(std::string(option) + ": wavelength " + format_param_number(l) + " nm is out of range: must be " +
-                       range.describe() + " (nm)");
+                       range.describe());
     }
   }
   return out;
