@@ -34,9 +34,7 @@ void run(AppContext& context, const Options& o) {
   check_output_folder_flag("--out", o.out);
   SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
   context.warn_about_problems();
-  if (!config.structure) {
-    throw ConfigError(config.root.mark(), "structure", "the config has no 'structure:' section");
-  }
+  required_structure(config);
   const std::string stem = config.species + (config.variant.empty() ? "" : "-" + config.variant);
   GeometryStatistics stats;
   std::vector<CrossSection> sections;

@@ -69,12 +69,14 @@ const ParamTable<OutlineSpec>& outline_table() {
                       {"elliptic_arc", Shape::elliptic_arc}, {"pillow", Shape::pillow}, {"flat", Shape::flat}},
                   required,
                   "elliptic_arc | pillow (flat top, rounded shoulders) | flat (rounded corners)")
-          .number("width_um", scaled(&OutlineSpec::width_nm, 1000.0), "um", required, Limits::positive(),
-                  "x-extent of the top surface")
+          .number("width_um", scaled(&OutlineSpec::width_nm, 1000.0), "um", required, Limits{0.0, 10000.0, true, false},
+                  "x-extent of the top surface (barbules are 10-100 um wide; up to 10 mm allowed)")
           .optional_number("thickness_um", [](OutlineSpec& s) { return GivenThickness{s}; }, "um",
-                           "required (unless the generator computes T)", Limits::positive(), "T: distance of the bottom below the top")
-          .number("spacing_nm", &OutlineSpec::spacing_nm, "nm", 30.0, Limits::positive(),
-                  "vertex spacing along the top (arc length), below a tenth of the width")
+                           "required (unless the generator computes T)", Limits{0.0, 1000.0, true, false},
+                           "T: distance of the bottom below the top (barbules are 1-10 um thick; up to 1 mm allowed)")
+          .number("spacing_nm", &OutlineSpec::spacing_nm, "nm", 30.0, Limits::closed(1.0, 10000.0),
+                  "vertex spacing along the top (arc length), below a tenth of the width; at least 1 nm (finer "
+                  "than any layer a barbule has)")
           .interval("edge_slope_deg", &OutlineSpec::edge_slope_deg, "deg", required, Limits{0.0, 80.0, true, false},
                     "edge slope angle beta ~ U[range]")
           .only_if([](const OutlineSpec& s) { return is(s, Shape::elliptic_arc); }, "shape: elliptic_arc")

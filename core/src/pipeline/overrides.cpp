@@ -19,7 +19,7 @@ void append_samples(const ParamView& item, std::vector<double>& out) {
   const std::string text = item.scalar_text();
   const auto c1 = text.find(':');
   if (c1 == std::string::npos) {
-    out.push_back(item.scalar_number(Limits::positive()));
+    out.push_back(item.scalar_number(Limits::wavelength_nm()));
     return;
   }
   const auto c2 = text.find(':', c1 + 1);
@@ -46,9 +46,11 @@ void read_wavelengths(const ParamView& section, CharacterizeOverrides& o) {
   } else {
     append_samples(list, lambda);
   }
+  const Limits range = Limits::wavelength_nm();
   for (std::size_t k = 0; k < lambda.size(); ++k) {
-    if (!(lambda[k] > 0) || (k && lambda[k] <= lambda[k - 1]))
-      section.fail("lambda_nm", "wavelengths must be positive and ascending");
+    if (!range.admits(lambda[k]))
+      section.fail("lambda_nm", "wavelength " + format_param_number(lambda[k]) + " nm is out of range: must be " + range.describe());
+    if (k && lambda[k] <= lambda[k - 1]) section.fail("lambda_nm", "wavelengths must be positive and ascending");
   }
   if (lambda.empty()) section.fail("lambda_nm", "no wavelengths");
   o.lambda_nm = std::move(lambda);
@@ -82,7 +84,7 @@ const ParamTable<CharacterizeOverrides>& characterize_overrides_table() {
           .integer("grid", &O::grid, "1", 0, Limits::at_least(2), "incident nodes per axis G")
           .default_text("the preset's")
           .custom("lambda_nm", "list", "nm", "the preset's",
-                  "wavelengths, ascending: numbers or from:to:step ranges (e.g. 400,500 or 400:700:30)", read_wavelengths)
+                  "wavelengths, ascending, in [100, 5000] nm: numbers or from:to:step ranges (e.g. 400,500 or 400:700:30)", read_wavelengths)
           .integer("noise_functions", &O::noise_functions, "1", 512, Limits::closed(1, 65536),
                    "noise pool size (spec 4.8; instance k uses functions 2k and 2k + 1)")
           .number("sigma", &O::sigma, "1", kLobeSigma, Limits::positive(), "D_y spread of both lobes (spec 4.3)");
