@@ -60,6 +60,7 @@ void run(AppContext& context, const Options& o) {
   }
   // Everything generated and valid: now write.
   if (!o.out.empty()) {
+    for (const CrossSection& cs : sections) check_cross_section_pictures(cs, o.pictures);
     create_output_directory(o.out, "--out");
     for (const CrossSection& cs : sections) {
       write_cross_section_files(cs, std::filesystem::path(o.out) / (stem + "-" + std::to_string(cs.instance)), o.pictures);

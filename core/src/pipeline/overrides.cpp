@@ -5,6 +5,7 @@
 #include <string>
 
 #include "plumage/characterize_settings.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/config_sections.hpp"
 #include "plumage/lobe_model.hpp"
 #include "plumage/material_key.hpp"
@@ -72,6 +73,19 @@ void check_counts(const SpeciesConfig& config, const CharacterizeSettings& s) {
   if (s.grid < 2) fail("incident_grid", "a characterisation needs at least 2 incident nodes per axis");
 }
 
+// Work budget (issue 23, plumage/memory_budget.hpp): `--grid 100000` asks for 1e10 fit units per
+// wavelength. The preset grids need at most ~1e5 fits and solves (production: 50 x 20 x 20 units,
+// 50 x 20 x 50 solves); anything past kMaxWorkUnits (1e8) is a typo, refused before any work.
+void check_work_bounds(const CharacterizeSettings& s) {
+  const double lambdas = static_cast<double>(s.lambda_nm.size()), grid = s.grid, instances = s.instances;
+  const std::string counts = " (" + std::to_string(s.lambda_nm.size()) + " wavelengths, grid " + std::to_string(s.grid) +
+                             ", " + std::to_string(s.instances) + " instances)";
+  check_work(lambdas * grid * grid, "characterize " + s.label + ": wavelengths x grid^2 fit units" + counts,
+             "--grid / simulation.incident_grid or --lambda-nm / simulation.wavelengths_nm");
+  check_work(lambdas * grid * instances, "characterize " + s.label + ": wavelengths x grid x instances solves" + counts,
+             "--instances / simulation.instances, --grid or --lambda-nm");
+}
+
 }  // namespace
 
 const ParamTable<CharacterizeOverrides>& characterize_overrides_table() {
@@ -111,6 +125,7 @@ CharacterizeSettings characterize_settings(const SpeciesConfig& config, const Pl
   s.noise_functions = o.noise_functions > 0 ? o.noise_functions : defaults.noise_functions;
   s.bin_width_nm = s.lambda_nm.size() > 1 ? s.lambda_nm[1] - s.lambda_nm[0] : 6.0;
   check_counts(config, s);
+  check_work_bounds(s);
   return s;
 }
 
