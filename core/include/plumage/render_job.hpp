@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "plumage/feather_bsdf.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/renderer.hpp"
 #include "plumage/scene_config.hpp"
@@ -57,6 +58,10 @@ struct RenderedView {
   std::vector<WarningShare> warning_shares;
   double warning_share_threshold = 0.01;
 };
+
+// The image buffers of one view (memory_budget.hpp); RenderJob refuses views that would not fit
+// (MemoryBudgetError, exit status 2) when it is made, before any geometry or material.
+MemoryEstimate estimate_view_memory(const SceneView& view);
 
 class RenderJob {
  public:
