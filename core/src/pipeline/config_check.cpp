@@ -12,8 +12,11 @@
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/error.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/render_job.hpp"
 #include "plumage/species_config.hpp"
+#include "plumage/structure_generator.hpp"
+#include "plumage/table_build.hpp"
 #include "plumage/table_builder.hpp"
 
 namespace plumage {
@@ -33,8 +36,27 @@ bool collect(ConfigCheck& c, const std::function<void()>& step) {
     keep(e.what());
   } catch (const PluginError& e) {
     keep(e.what());
+  } catch (const MemoryBudgetError& e) {
+    keep(e.what());
   }
   return false;
+}
+
+// The memory of one solve of instance 0, as the solver itself would refuse it before assembly
+// (ScatteringSolver::estimate_memory): at the shortest and the longest of the simulation's
+// wavelengths (a BEM mesh grows as 1/λ), with the incident grid's azimuths per θ_i and the pattern's
+// outgoing samples. A solver with nothing large to hold returns an empty estimate.
+void check_solver_memory(const SpeciesConfig& config, const StructureGenerator& structure) {
+  const auto& lambdas = config.simulation.wavelengths_nm;
+  if (!config.solver || lambdas.empty()) return;
+  const CrossSection section = structure.generate(0);
+  const auto [lo, hi] = std::minmax_element(lambdas.begin(), lambdas.end());
+  for (double lambda : {*lo, *hi}) {
+    const MemoryEstimate e =
+        config.solver->estimate_memory(section, lambda, static_cast<std::size_t>(config.simulation.incident_grid),
+                                       static_cast<std::size_t>(config.simulation.pattern_samples));
+    if (!e.parts.empty()) check_memory(e);
+  }
 }
 
 // Every variant by name (the default too, which load_species_config checks against `variants:`
@@ -48,7 +70,7 @@ void check_species(const std::filesystem::path& file, const PluginRegistry& regi
   for (const auto& v : variants) {
     collect(c, [&] {
       const SpeciesConfig config = load_species_config(file, registry, v);
-      required_structure(config);
+      check_solver_memory(config, required_structure(config));
       const std::string work = pending_preparation(config);
       if (!work.empty()) c.to_prepare.push_back((v.empty() ? "" : v + ": ") + work);
     });
@@ -86,6 +108,16 @@ void check_crystal(const std::filesystem::path& file, const PluginRegistry& regi
     const CrystalCell cell = load_crystal_cell(file);
     c.summary = "crystal " + cell.name;
     for (const std::string& section : check_builder_sections(cell, registry)) c.summary += ", " + section + " section checked";
+    // The memory of `plumage table build` at its defaults (production grid, 400-700 nm), as the
+    // builder refuses it before any run (TableBuilder::estimate_memory).
+    const TableBuildRequest defaults;
+    const TableGrid grid = TableGrid::uniform(defaults.lambda_min_nm, defaults.lambda_max_nm, kProductionTableGrid.n_lambda,
+                                              kProductionTableGrid.n_theta, kProductionTableGrid.n_phi);
+    for (const auto& [name, section] : cell.builder_sections) {
+      const MemoryEstimate e =
+          registry.create_named<TableBuilder>(name, ParamView{}, registry.context())->estimate_memory(cell, grid);
+      if (!e.parts.empty()) check_memory(e);
+    }
   });
 }
 
