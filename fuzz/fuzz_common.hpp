@@ -1,0 +1,62 @@
+// Shared by the libFuzzer harnesses (fuzz/*.cpp): the input is written to a file in this process's
+// scratch folder and handed to the project's own reader, the function the commands call. The
+// project's typed errors (plumage::Error and its subclasses: ConfigError, OutputPathError, ...)
+// are the expected answer to bad bytes; anything else escaping the reader (std::bad_alloc,
+// std::length_error, another std exception) terminates the process, which libFuzzer reports as a
+// finding, as it does crashes, sanitizer reports, leaks and hangs.
+#pragma once
+
+#include <unistd.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <string_view>
+
+#include "plumage/error.hpp"
+
+namespace plumage::fuzz {
+
+// A folder of its own per process (several harnesses may run at once), removed at exit.
+inline const std::filesystem::path& scratch() {
+  struct Scratch {
+    std::filesystem::path dir;
+    Scratch() {
+      dir = std::filesystem::temp_directory_path() / ("plumage-fuzz-" + std::to_string(::getpid()));
+      std::filesystem::remove_all(dir);
+      std::filesystem::create_directories(dir);
+    }
+    ~Scratch() {
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  };
+  static const Scratch s;
+  return s.dir;
+}
+
+// Writes the fuzzer's bytes to `file` (created or replaced).
+inline void write_bytes(const std::filesystem::path& file, std::string_view bytes) {
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+inline std::string_view as_text(const std::uint8_t* data, std::size_t size) {
+  return {reinterpret_cast<const char*>(data), size};
+}
+
+// Runs one reader call; a plumage::Error is an expected outcome (bad input refused), and its
+// message must name something (an empty message would tell the user nothing).
+template <class F>
+void expect_typed_errors(F&& call) {
+  try {
+    call();
+  } catch (const plumage::Error& e) {
+    if (std::string_view(e.what()).empty()) __builtin_trap();
+  }
+}
+
+}  // namespace plumage::fuzz
