@@ -15,6 +15,7 @@
 #include <string>
 #include <string_view>
 
+#include "plumage/checksum.hpp"
 #include "plumage/error.hpp"
 
 namespace plumage::fuzz {
@@ -46,6 +47,21 @@ inline void write_bytes(const std::filesystem::path& file, std::string_view byte
 
 inline std::string_view as_text(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};
+}
+
+// The binary formats (.plm, .plt, .ffs) end in the FNV-1a of all bytes before it (u64, little
+// endian): a mutated file almost always fails that check first. The same bytes with the trailer
+// recomputed reach the content checks behind it, as a hand-forged file would (issue 23: a .plm
+// with flipped bytes and a recomputed checksum). Empty when the input is too short or its
+// trailer is already right.
+inline std::string with_fnv1a_trailer(std::string_view bytes) {
+  if (bytes.size() < 8) return {};
+  const std::string_view body = bytes.substr(0, bytes.size() - 8);
+  const std::uint64_t sum = plumage::fnv1a(body);
+  std::string fixed(body);
+  for (int i = 0; i < 8; ++i) fixed.push_back(static_cast<char>((sum >> (8 * i)) & 0xff));
+  if (fixed == bytes) return {};
+  return fixed;
 }
 
 // Runs one reader call; a plumage::Error is an expected outcome (bad input refused), and its
