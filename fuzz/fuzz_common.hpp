@@ -10,6 +10,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -62,6 +63,26 @@ inline std::string with_fnv1a_trailer(std::string_view bytes) {
   for (int i = 0; i < 8; ++i) fixed.push_back(static_cast<char>((sum >> (8 * i)) & 0xff));
   if (fixed == bytes) return {};
   return fixed;
+}
+
+// Journals and shards checksum each record instead ('PLMR', u64 body length, body, u64 FNV-1a
+// of the body; plumage/characterize_records.hpp): the same repair for every record whose length
+// fits in the input. Empty when nothing changed.
+inline std::string with_record_checksums(std::string_view bytes) {
+  std::string fixed(bytes);
+  bool changed = false;
+  for (std::size_t at = fixed.find("PLMR"); at != std::string::npos; at = fixed.find("PLMR", at + 4)) {
+    std::uint64_t len = 0;
+    if (at + 12 > fixed.size()) break;
+    std::memcpy(&len, fixed.data() + at + 4, 8);
+    if (len > fixed.size() || at + 12 + len + 8 > fixed.size()) continue;
+    const std::uint64_t sum = plumage::fnv1a(std::string_view(fixed).substr(at + 12, len));
+    if (std::memcmp(fixed.data() + at + 12 + len, &sum, 8) != 0) {
+      std::memcpy(fixed.data() + at + 12 + len, &sum, 8);
+      changed = true;
+    }
+  }
+  return changed ? fixed : std::string();
 }
 
 // Runs one reader call; a plumage::Error is an expected outcome (bad input refused), and its
