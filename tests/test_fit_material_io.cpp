@@ -22,7 +22,7 @@ FeatherMaterial sample_material() {
   m.lambda_nm = {400, 406, 412};
   m.nodes.resize(3 * 25);
   for (std::size_t k = 0; k < m.nodes.size(); ++k) {
-    for (int p = 0; p < kMaterialParameters; ++p) m.nodes[k].*kMaterialFields[p] = 0.001 * k + 0.37 * p + 1e-17 * k;
+    for (int p = 0; p < kMaterialParameters; ++p) m.nodes[k].*kMaterialFields[p] = 0.001 * k + 0.17 * p + 1e-17 * k;  // pol_share (p = 6) a share, <= 2
   }
   m.noise.samples = 16;
   m.noise.lag1 = 0.93;

@@ -83,6 +83,7 @@ void run(AppContext& context, const Options& o) {
   const std::filesystem::path out(o.out);
   const CharacterizeResult r = characterize(config, s, out, options, [&](const CharacterizePlan& plan) {
     if (!context.quiet) print_plan(s, plan);
+    for (const std::string& damage : plan.damaged_records) std::cerr << "warning: " << damage << "\n";
   });
   if (!r.root) return;  // rank 0 reports for the launch
   if (r.shard_written) {

@@ -7,6 +7,7 @@
 #include "plumage/atomic_file.hpp"
 #include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
+#include "plumage/input_file.hpp"
 #include "plumage/version.hpp"
 
 int main(int argc, char** argv) {
@@ -57,6 +58,9 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const plumage::PluginError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const plumage::InputFileError& e) {  // a damaged or wrong input file
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const plumage::OutputPathError& e) {

@@ -68,9 +68,9 @@ TEST_CASE("characterize: shards merged are bit-identical to a single run", "[cha
   CHECK(single.output.find("[approx.grazing]") != std::string::npos);
   CHECK(bytes(dir / "single.plm").find("approx.grazing: raised while computing") != std::string::npos);
 
-  // A missing shard: exit 1, the count of missing groups, nothing written.
+  // A missing shard: bad input (exit 2, issue 23), the count of missing groups, nothing written.
   const Result partial = run("merge " + (dir / "part1.shard").string() + " --out " + (dir / "partial.plm").string());
-  CHECK(partial.status == 1);
+  CHECK(partial.status == 2);
   CHECK(partial.output.find("missing") != std::string::npos);
   CHECK(!fs::exists(dir / "partial.plm"));
   // A shard of other settings is refused.

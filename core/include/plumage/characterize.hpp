@@ -67,6 +67,9 @@ struct CharacterizePlan {
   int part = 0, parts = 1;  // this shard or rank of how many
   bool mpi = false;         // parts are MPI ranks
   std::filesystem::path journal;
+  // Damaged records skipped in the journal (one message each, naming the journal and the byte
+  // offsets); their groups are among `todo`.
+  std::vector<std::string> damaged_records;
 };
 
 struct CharacterizeResult {

@@ -36,9 +36,11 @@ struct GroupRecord {
 std::string serialize(const GroupRecord& r);
 
 // A journal or shard file: a text header (magic, fingerprint, the species file's config hash,
-// the material inputs) and appended records, each with its own checksum. Reading stops at the
-// first incomplete or corrupt record (a run killed while appending) and reports the byte offset
-// where valid data end. A journal of format 1 (before material keys) is read with its
+// the material inputs) and appended records, each with its own checksum. A record that does not
+// parse (a flipped byte) is skipped alone: reading resumes at the next record that parses whole
+// with its checksum, and the skipped bytes are listed in `damaged` (its group is recomputed on
+// resume; a shard with one is refused by merge). Bytes after the last good record are a torn
+// tail (a run killed while appending): `valid_bytes` is where the last good record ends. A journal of format 1 (before material keys) is read with its
 // fingerprint only: it matches no current settings.
 struct JournalContents {
   int format = 0;
@@ -47,6 +49,11 @@ struct JournalContents {
   std::string inputs;
   std::vector<GroupRecord> records;
   std::uintmax_t valid_bytes = 0;
+  // Damaged stretches skipped between good records: [offset, end) in bytes.
+  struct Damage {
+    std::uintmax_t offset = 0, end = 0;
+  };
+  std::vector<Damage> damaged;
 };
 JournalContents read_journal(const std::filesystem::path& file);
 // The same from bytes in memory; `name` stands for the file in messages.

@@ -5,15 +5,15 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <string_view>
 
 #include "plumage/atomic_file.hpp"
 #include "plumage/checksum.hpp"
 #include "plumage/error.hpp"
 #include "plumage/feather_material.hpp"
+#include "plumage/input_file.hpp"
 
 namespace plumage {
 
@@ -22,6 +22,22 @@ namespace {
 constexpr char kMagic[8] = {'P', 'L', 'U', 'M', 'P', 'L', 'M', '\0'};
 constexpr std::size_t kMaxString = 1 << 16;
 constexpr std::size_t kHeaderChunk = 1 << 16;
+
+// Bounds of each stored node parameter (kMaterialFields order). Roughness and the shares are
+// bounded by their meaning with room for the grazing extrapolation; the scales F·cosθ·cosφ are
+// albedos (≤ 1 for a passive surface, far less than 1e3 even when extrapolated); azimuths are
+// angles; the correlation ratio l/l0 is positive and below 1e6.
+struct Range {
+  double lo, hi;
+};
+constexpr Range kNodeRange[kMaterialParameters] = {{-10, 10},   {-7, 7},     {-1e3, 1e3}, {-10, 10},
+                                                   {-7, 7},     {-1e3, 1e3}, {-1, 2},     {-1e6, 1e6}};
+
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
 
 struct Writer {
   std::string bytes;
@@ -40,7 +56,7 @@ class Reader {
  public:
   Reader(const std::string& data, std::size_t end, const std::filesystem::path& file)
       : data_(data), end_(end), file_(file) {}
-  Reader(std::istream& in, const std::filesystem::path& file) : own_(), data_(own_), end_(0), file_(file), in_(&in) {}
+  Reader(InputFile& in, const std::filesystem::path& file) : own_(), data_(own_), end_(0), file_(file), in_(&in) {}
 
   template <class T>
   T get() {
@@ -59,16 +75,23 @@ class Reader {
     return s;
   }
   void need(std::size_t n) {
-    while (in_ && pos_ + n > end_ && *in_) {
+    // A size read from the file is checked against the file's own size before it is read or
+    // allocated: a forged count fails here, at once.
+    const std::uintmax_t size = in_ ? in_->size() : end_;
+    if (n > size || pos_ > size - n)
+      fail("truncated feather material: " + std::to_string(n) + " bytes needed at byte " + std::to_string(pos_) +
+           ", the file holds " + std::to_string(size));
+    while (in_ && pos_ + n > end_) {
       const std::size_t want = std::max(kHeaderChunk, pos_ + n - end_);
       own_.resize(end_ + want);
-      in_->read(own_.data() + end_, static_cast<std::streamsize>(want));
-      end_ += static_cast<std::size_t>(in_->gcount());
+      const std::size_t got = in_->read(own_.data() + end_, want);
+      end_ += got;
       own_.resize(end_);
+      if (got == 0) break;
     }
     if (pos_ + n > end_) fail("truncated feather material (at byte " + std::to_string(pos_) + ")");
   }
-  [[noreturn]] void fail(const std::string& what) const { throw Error(file_.string() + ": " + what); }
+  [[noreturn]] void fail(const std::string& what) const { throw InputFileError(file_.string(), what); }
   std::size_t position() const { return pos_; }
 
  private:
@@ -76,7 +99,7 @@ class Reader {
   const std::string& data_;
   std::size_t end_;
   std::filesystem::path file_;
-  std::istream* in_ = nullptr;
+  InputFile* in_ = nullptr;
   std::size_t pos_ = 0;
 };
 
@@ -93,8 +116,47 @@ void check_material(const FeatherMaterial& m) {
 
 void check_version(std::uint32_t version, const std::filesystem::path& file) {
   if (version < 1 || version > FeatherMaterial::kFormatVersion)
-    throw Error(file.string() + ": feather material version " + std::to_string(version) + ", this build reads 1 to " +
-                std::to_string(FeatherMaterial::kFormatVersion));
+    throw InputFileError(file.string(), "feather material version " + std::to_string(version) + ", this build reads 1 to " +
+                                            std::to_string(FeatherMaterial::kFormatVersion));
+}
+
+// The header's numbers: finite, in range, the wavelength grid strictly increasing.
+void check_header_values(const FeatherMaterialHeader& h, const Reader& r) {
+  const auto scalar = [&](const char* field, double v) {
+    if (!std::isfinite(v) || v < 0) r.fail(std::string(field) + ": " + number(v) + ", expected a finite value >= 0");
+  };
+  scalar("sigma", h.sigma);
+  scalar("l0", h.l0);
+  scalar("bin_width_nm", h.bin_width_nm);
+  for (std::size_t w = 0; w < h.lambda_nm.size(); ++w) {
+    const double l = h.lambda_nm[w];
+    if (!std::isfinite(l) || l <= 0 || l > kFileMaxWavelengthNm)
+      r.fail("lambda_nm[" + std::to_string(w) + "]: " + number(l) + " nm, expected in (0, " + number(kFileMaxWavelengthNm) + "]");
+    if (w > 0 && !(l > h.lambda_nm[w - 1]))
+      r.fail("lambda_nm[" + std::to_string(w) + "]: " + number(l) + " nm after " + number(h.lambda_nm[w - 1]) +
+             " nm: the wavelengths must be strictly increasing");
+  }
+}
+
+// The tables' numbers: finite and in generous physical ranges (stored nodes include the grazing
+// extrapolation, which lookup() clamps later, so the ranges bound damage, not fits).
+void check_table_values(const FeatherMaterial& m, const Reader& r) {
+  const std::size_t per_bin = static_cast<std::size_t>(m.grid + 1) * static_cast<std::size_t>(m.grid + 1);
+  for (std::size_t k = 0; k < m.nodes.size(); ++k) {
+    for (std::size_t f = 0; f < kMaterialParameters; ++f) {
+      const double v = m.nodes[k].*kMaterialFields[f];
+      if (!std::isfinite(v) || v < kNodeRange[f].lo || v > kNodeRange[f].hi)
+        r.fail("node " + std::to_string(k) + " (wavelength bin " + std::to_string(k / per_bin) + ", node " +
+               std::to_string(k % per_bin) + ") " + kMaterialFieldNames[f] + ": " + number(v) + ", expected in [" +
+               number(kNodeRange[f].lo) + ", " + number(kNodeRange[f].hi) + "]");
+    }
+  }
+  if (!std::isfinite(m.noise.lag1) || m.noise.lag1 < -1 || m.noise.lag1 > 1)
+    r.fail("noise lag1: " + number(m.noise.lag1) + ", expected a correlation in [-1, 1]");
+  for (std::size_t k = 0; k < m.noise.functions.size(); ++k)
+    if (!std::isfinite(m.noise.functions[k]))
+      r.fail("noise function " + std::to_string(k / static_cast<std::size_t>(m.noise.samples)) + ", sample " +
+             std::to_string(k % static_cast<std::size_t>(m.noise.samples)) + ": not finite");
 }
 
 // Every field before the node tables, after magic and version.
@@ -118,6 +180,7 @@ void read_header(Reader& r, std::uint32_t version, FeatherMaterialHeader& h) {
   r.need(bins * sizeof(double));
   h.lambda_nm.resize(bins);
   for (double& l : h.lambda_nm) l = r.get<double>();
+  check_header_values(h, r);
 }
 
 }  // namespace
@@ -152,8 +215,7 @@ void write_feather_material(const std::filesystem::path& file, const FeatherMate
 }
 
 FeatherMaterialHeader read_feather_material_header(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file.string() + ": cannot open feather material");
+  InputFile in(file, "feather material");
   Reader r(in, file);
   r.need(sizeof kMagic + 4);
   const auto magic = r.get<std::array<char, sizeof kMagic>>();
@@ -166,18 +228,16 @@ FeatherMaterialHeader read_feather_material_header(const std::filesystem::path& 
 }
 
 FeatherMaterial read_feather_material(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file.string() + ": cannot open feather material");
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string data = read_input_file(file, "feather material");
   if (data.size() < sizeof kMagic + 4 + 8 || std::memcmp(data.data(), kMagic, sizeof kMagic) != 0)
-    throw Error(file.string() + ": not a plumage feather material (bad magic)");
+    throw InputFileError(file.string(), "not a plumage feather material (bad magic)");
   std::uint32_t version;
   std::memcpy(&version, data.data() + sizeof kMagic, 4);
   check_version(version, file);
   std::uint64_t stored;
   std::memcpy(&stored, data.data() + data.size() - 8, 8);
   if (stored != fnv1a(std::string_view(data).substr(0, data.size() - 8)))
-    throw Error(file.string() + ": checksum mismatch (corrupt or truncated feather material)");
+    throw InputFileError(file.string(), "checksum mismatch (corrupt or truncated feather material)");
 
   Reader r(data, data.size() - 8, file);
   (void)r.get<std::uint64_t>();  // magic
@@ -214,6 +274,7 @@ FeatherMaterial read_feather_material(const std::filesystem::path& file) {
   m.noise.functions.resize(values);
   std::memcpy(m.noise.functions.data(), data.data() + r.position(), values * sizeof(float));
   if (r.position() + values * sizeof(float) + 8 != data.size()) r.fail("trailing bytes in feather material");
+  check_table_values(m, r);
   return m;
 }
 

@@ -62,6 +62,7 @@ Part plan_part(const CharacterizeSettings& s, const fs::path& out, const Charact
   p.plan.groups = s.group_count();
   p.plan.resumed = resume.done.size();
   p.plan.todo = p.todo.size();
+  p.plan.damaged_records = resume.damaged;
   p.valid_bytes = resume.valid_bytes;
   return p;
 }

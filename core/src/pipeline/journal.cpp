@@ -1,7 +1,9 @@
 // Journals and shard files of a characterisation: a text header and appended, checksummed work
 // records (characterize_records.hpp; layout: docs/formats.md).
-#include "plumage/atomic_file.hpp"
 #include "journal.hpp"
+
+#include "plumage/atomic_file.hpp"
+#include "plumage/input_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
@@ -10,8 +12,6 @@
 #include <cstdlib>
 #include <optional>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 
 #include "records.hpp"
 
@@ -46,6 +46,29 @@ bool parse_header_v2(std::string_view data, std::size_t& pos, JournalContents& j
   return true;
 }
 
+// Whether the bytes from `at` to the end are one record by their length field (a record whose
+// body is damaged; a kill while appending leaves fewer bytes than its length says).
+bool whole_record_at(std::string_view data, std::size_t at) {
+  std::uint32_t magic = 0;
+  std::uint64_t len = 0;
+  if (data.size() - at < 12) return false;
+  std::memcpy(&magic, data.data() + at, 4);
+  std::memcpy(&len, data.data() + at + 4, 8);
+  return magic == kRecordMagic && len == data.size() - at - 20;
+}
+
+// The offset of the first record at or after `from` that parses whole, or data.size().
+std::size_t next_record(std::string_view data, std::size_t from) {
+  char magic[4];
+  std::memcpy(magic, &kRecordMagic, 4);
+  for (std::size_t at = data.find(std::string_view(magic, 4), from); at != std::string_view::npos;
+       at = data.find(std::string_view(magic, 4), at + 1)) {
+    std::size_t p = at;
+    if (parse_record(data, p)) return at;
+  }
+  return data.size();
+}
+
 }  // namespace
 
 std::string journal_header(const CharacterizeSettings& s) {
@@ -62,12 +85,23 @@ JournalContents parse_journal(std::string_view data, const std::string& name) {
     j.format = std::atoi(std::string(magic->substr(kJournalMagic.size())).c_str());
   if (!fingerprint || (j.format != 1 && j.format != kJournalFormat) ||
       (j.format == kJournalFormat && !parse_header_v2(data, pos, j)))
-    throw Error(name + ": not a plumage characterisation journal or shard file (bad header)");
+    throw InputFileError(name, "not a plumage characterisation journal or shard file (bad header)");
   j.fingerprint = std::string(*fingerprint);
   j.valid_bytes = pos;
   while (pos < data.size()) {
+    const std::size_t at = pos;
     auto r = parse_record(data, pos);
-    if (!r) break;
+    if (!r) {
+      // A damaged record: resume at the next one that parses whole (its checksum makes a false
+      // start in the damaged bytes practically impossible); none means a torn tail.
+      pos = next_record(data, at + 1);
+      if (pos == data.size()) {
+        if (whole_record_at(data, at)) j.damaged.push_back({at, pos});  // damaged, not torn by a kill
+        break;
+      }
+      j.damaged.push_back({at, pos});
+      continue;
+    }
     j.records.push_back(std::move(*r));
     j.valid_bytes = pos;
   }
@@ -75,9 +109,7 @@ JournalContents parse_journal(std::string_view data, const std::string& name) {
 }
 
 JournalContents read_journal(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file.string() + ": cannot open characterisation journal");
-  const std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string data = read_input_file(file, "characterisation journal or shard");
   return parse_journal(data, file.string());
 }
 
@@ -119,6 +151,10 @@ JournalResume read_journal_resume(const std::filesystem::path& journal, const Ch
   }
   for (const auto& r : j.records) resume.done.insert(r.w * static_cast<std::size_t>(s.grid) + (r.a - 1));
   resume.valid_bytes = j.valid_bytes;
+  for (const auto& d : j.damaged)
+    resume.damaged.push_back(journal.string() + ": damaged record at bytes " + std::to_string(d.offset) + " to " +
+                             std::to_string(d.end) + " skipped (its work group is recomputed; " +
+                             std::to_string(j.records.size()) + " good records kept)");
   return resume;
 }
 

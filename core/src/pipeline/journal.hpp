@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "plumage/characterize_records.hpp"
 
@@ -17,6 +18,7 @@ struct JournalResume {
   std::uintmax_t valid_bytes = 0;
   bool matches = true;
   std::string fingerprint;
+  std::vector<std::string> damaged;  // one message per damaged record skipped
 };
 JournalResume read_journal_resume(const std::filesystem::path& journal, const CharacterizeSettings& s);
 

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "plumage/config_document.hpp"
+#include "plumage/input_file.hpp"
 #include "plumage/local_reflection.hpp"
 #include "plumage/scattering_solver.hpp"
 #include "plumage/structure_generator.hpp"
@@ -53,9 +54,7 @@ std::string file_digest(const fs::path& file, int depth) {
     for (const auto& f : nested) text += "\nfile " + f.where + " " + f.digest;
     return fnv1a_hex(text);
   }
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file.string() + ": cannot read (named by a species config)");
-  return fnv1a_hex(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()));
+  return fnv1a_hex(read_input_file(file, "file named by a species config"));
 }
 
 // The merged variant without the bookkeeping of variants (the variant name is in the label).

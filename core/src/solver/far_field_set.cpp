@@ -1,13 +1,15 @@
 #include "plumage/checksum.hpp"
 #include "plumage/far_field_set.hpp"
 
+#include <cmath>
+#include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <sstream>
 
 #include "plumage/atomic_file.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
+#include "plumage/input_file.hpp"
 
 namespace plumage {
 
@@ -25,30 +27,98 @@ class Writer {
   std::string bytes;
 };
 
+std::string number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+// Reads the bytes before the checksum; every failure is an InputFileError naming the byte offset.
 class Reader {
  public:
-  Reader(const std::string& data, const std::filesystem::path& file) : data_(data), file_(file) {}
+  Reader(const std::string& data, const std::filesystem::path& file) : data_(data), end_(data.size() - 8), file_(file) {}
   template <class T>
   T get() {
-    if (pos_ + sizeof(T) > data_.size()) throw Error(file_.string() + ": truncated far-field set");
+    need(sizeof(T), "a value");
     T v;
     std::memcpy(&v, data_.data() + pos_, sizeof v);
     pos_ += sizeof v;
     return v;
   }
   std::string get_bytes(std::size_t n) {
-    if (pos_ + n > data_.size()) throw Error(file_.string() + ": truncated far-field set");
+    need(n, "the metadata");
     std::string s = data_.substr(pos_, n);
     pos_ += n;
     return s;
+  }
+  // Refuses a size read from the file that the rest of the file cannot hold, before anything of
+  // that size is allocated or read: `count` items of `bytes` each.
+  void need(std::uint64_t count, std::uint64_t bytes, const std::string& what) {
+    const std::uint64_t left = end_ - pos_;
+    if (bytes != 0 && count > left / bytes)
+      fail("truncated far-field set or forged count: " + what + " needs " + std::to_string(count) + " x " +
+           std::to_string(bytes) + " bytes at byte " + std::to_string(pos_) + ", " + std::to_string(left) + " remain");
+  }
+  void need(std::uint64_t n, const std::string& what) { need(n, 1, what); }
+  [[noreturn]] void fail(const std::string& what) const { throw InputFileError(file_.string(), what); }
+  // A stored number: finite and within [lo, hi].
+  double checked(double v, double lo, double hi, const std::string& field) const {
+    if (!std::isfinite(v) || v < lo || v > hi)
+      fail(field + ": " + number(v) + ", expected a finite value in [" + number(lo) + ", " + number(hi) + "] (byte " +
+           std::to_string(pos_ - 8) + ")");
+    return v;
   }
   std::size_t position() const { return pos_; }
 
  private:
   const std::string& data_;
+  std::size_t end_;
   std::filesystem::path file_;
   std::size_t pos_ = 0;
 };
+
+// One unit, its sizes checked against the bytes left before they are allocated and its numbers
+// finite and in range (angles within a turn, wavelengths as input_file.hpp bounds them).
+FarFieldUnit read_unit(Reader& r, const std::string& unit) {
+  constexpr double kTurn = 2 * 3.14159265358979323846;
+  FarFieldUnit u;
+  u.lambda_nm = r.checked(r.get<double>(), 1e-9, kFileMaxWavelengthNm, unit + " lambda_nm");
+  u.nominal.theta_rad = r.checked(r.get<double>(), -kTurn, kTurn, unit + " theta_rad");
+  u.nominal.phi_rad = r.checked(r.get<double>(), -kTurn, kTurn, unit + " phi_rad");
+  const auto instances = r.get<std::uint32_t>();
+  u.pattern_count = r.get<std::uint32_t>();
+  const auto dirs = r.get<std::uint32_t>();
+  if (u.pattern_count > dirs)
+    r.fail(unit + " pattern_count: " + std::to_string(u.pattern_count) + " of only " + std::to_string(dirs) + " directions");
+  r.need(dirs, 8, unit + " directions");
+  std::vector<double> phi_o(dirs);
+  for (std::uint32_t j = 0; j < dirs; ++j) phi_o[j] = r.checked(r.get<double>(), -kTurn, kTurn, unit + " phi_o_rad[" + std::to_string(j) + "]");
+  const std::uint64_t instance_bytes = 3 * 8 + std::uint64_t{dirs} * 2 * 3 * 2 * 4;
+  r.need(instances, instance_bytes, unit + " instances");
+  for (std::uint32_t n = 0; n < instances; ++n) {
+    const std::string in = unit + " instance " + std::to_string(n);
+    FarField ff;
+    ff.lambda_nm = u.lambda_nm;
+    ff.incident = {u.nominal.theta_rad, r.checked(r.get<double>(), -kTurn, kTurn, in + " incident phi_rad")};
+    const double p0 = r.checked(r.get<double>(), 0, 1e300, in + " incident_power[0]");
+    ff.incident_power = {p0, r.checked(r.get<double>(), 0, 1e300, in + " incident_power[1]")};
+    ff.phi_o_rad = phi_o;
+    for (int p = 0; p < 2; ++p) {
+      ff.field[p].resize(dirs);
+      for (std::size_t j = 0; j < dirs; ++j) {
+        for (int c = 0; c < 3; ++c) {
+          const float re = r.get<float>(), im = r.get<float>();
+          if (!std::isfinite(re) || !std::isfinite(im))
+            r.fail(in + " field[" + std::to_string(p) + "][" + std::to_string(j) + "]: not finite (byte " +
+                   std::to_string(r.position() - 8) + ")");
+          ff.field[p][j][c] = {re, im};
+        }
+      }
+    }
+    u.instances.push_back(std::move(ff));
+  }
+  return u;
+}
 
 }  // namespace
 
@@ -97,64 +167,35 @@ void write_far_field_set(const FarFieldSet& set, const std::filesystem::path& fi
 }
 
 FarFieldSet read_far_field_set(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file.string() + ": cannot open far-field set");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  const std::string data = buffer.str();
+  const std::string data = read_input_file(file, "far-field set");
   if (data.size() < sizeof kMagic + 8 || std::memcmp(data.data(), kMagic, sizeof kMagic) != 0) {
-    throw Error(file.string() + ": not a plumage far-field set (bad magic)");
+    throw InputFileError(file.string(), "not a plumage far-field set (bad magic)");
   }
   std::uint64_t stored = 0;
   std::memcpy(&stored, data.data() + data.size() - 8, 8);
   if (stored != fnv1a(std::string_view(data).substr(0, data.size() - 8))) {
-    throw Error(file.string() + ": checksum mismatch (corrupt or truncated far-field set)");
+    throw InputFileError(file.string(), "checksum mismatch (corrupt or truncated far-field set)");
   }
   Reader r(data, file);
   r.get_bytes(sizeof kMagic);
   const auto version = r.get<std::uint32_t>();
   if (version != kFarFieldSetVersion) {
-    throw Error(file.string() + ": far-field set version " + std::to_string(version) +
-                " is not supported (this plumage reads version " +
-                std::to_string(kFarFieldSetVersion) + ")");
+    r.fail("far-field set version " + std::to_string(version) + " is not supported (this plumage reads version " +
+           std::to_string(kFarFieldSetVersion) + ")");
   }
   FarFieldSet set;
-  std::istringstream header(r.get_bytes(r.get<std::uint32_t>()));
+  const auto header_bytes = r.get<std::uint32_t>();
+  std::istringstream header(r.get_bytes(header_bytes));
   for (std::string line; std::getline(header, line);) {
     const auto eq = line.find('=');
-    if (eq != std::string::npos) set.metadata[line.substr(0, eq)] = line.substr(eq + 1);
+    if (eq == std::string::npos || eq == 0) r.fail("header_bytes: metadata line \"" + line.substr(0, 60) + "\" is not key=value");
+    set.metadata[line.substr(0, eq)] = line.substr(eq + 1);
   }
   const auto units = r.get<std::uint64_t>();
-  for (std::uint64_t i = 0; i < units; ++i) {
-    FarFieldUnit u;
-    u.lambda_nm = r.get<double>();
-    u.nominal.theta_rad = r.get<double>();
-    u.nominal.phi_rad = r.get<double>();
-    const auto instances = r.get<std::uint32_t>();
-    u.pattern_count = r.get<std::uint32_t>();
-    const auto dirs = r.get<std::uint32_t>();
-    std::vector<double> phi_o(dirs);
-    for (auto& phi : phi_o) phi = r.get<double>();
-    for (std::uint32_t n = 0; n < instances; ++n) {
-      FarField ff;
-      ff.lambda_nm = u.lambda_nm;
-      ff.incident = {u.nominal.theta_rad, r.get<double>()};
-      ff.incident_power = {r.get<double>(), r.get<double>()};
-      ff.phi_o_rad = phi_o;
-      for (int p = 0; p < 2; ++p) {
-        ff.field[p].resize(dirs);
-        for (std::size_t j = 0; j < dirs; ++j) {
-          for (int c = 0; c < 3; ++c) {
-            const float re = r.get<float>(), im = r.get<float>();
-            ff.field[p][j][c] = {re, im};
-          }
-        }
-      }
-      u.instances.push_back(std::move(ff));
-    }
-    set.units.push_back(std::move(u));
-  }
-  if (r.position() + 8 != data.size()) throw Error(file.string() + ": trailing bytes in far-field set");
+  constexpr std::uint64_t kUnitBytes = 3 * 8 + 3 * 4;  // a unit without directions or instances
+  r.need(units, kUnitBytes, "units");
+  for (std::uint64_t i = 0; i < units; ++i) set.units.push_back(read_unit(r, "unit " + std::to_string(i)));
+  if (r.position() + 8 != data.size()) r.fail("trailing bytes in far-field set (after byte " + std::to_string(r.position()) + ")");
   return set;
 }
 

@@ -4,13 +4,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <sstream>
 
 #include "plumage/atomic_file.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
+#include "plumage/input_file.hpp"
 
 namespace plumage {
 
@@ -34,6 +33,23 @@ void check_axis(const std::vector<double>& a, const char* name, bool cosine) {
     if (cosine && (a[i] < 0.0 || a[i] > 1.0))
       throw Error(std::string("reflection table: axis ") + name + " outside [0, 1]");
   }
+}
+
+// A grid read from a file: finite, strictly increasing, within [lo, hi]; InputFileError naming
+// the axis and index otherwise (the constructor's check_axis names no file).
+void check_file_axis(const std::vector<double>& a, const char* axis, double lo, double hi, const std::string& file) {
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const std::string at = std::string(axis) + "[" + std::to_string(i) + "]: " + std::to_string(a[i]);
+    if (!std::isfinite(a[i]) || a[i] < lo || a[i] > hi)
+      throw InputFileError(file, at + ", expected a finite value in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    if (i > 0 && !(a[i] > a[i - 1]))
+      throw InputFileError(file, at + " after " + std::to_string(a[i - 1]) + ": the axis must be strictly increasing");
+  }
+}
+
+double checked_scalar(double v, const char* field, const std::string& file) {
+  if (!std::isfinite(v) || v < 0) throw InputFileError(file, std::string(field) + ": " + std::to_string(v) + ", expected a finite value >= 0");
+  return v;
 }
 
 // Cubic Hermite (Catmull-Rom with non-uniform spacing) weights over up to four nodes.
@@ -118,7 +134,9 @@ class Reader {
  public:
   Reader(const std::string& b, std::string file) : b_(b), file_(std::move(file)) {}
   void need(std::size_t n) const {
-    if (pos_ + n > b_.size()) throw Error("reflection table " + file_ + ": truncated file");
+    if (n > b_.size() - 8 || pos_ > b_.size() - 8 - n)
+      throw InputFileError(file_, "truncated reflection table: " + std::to_string(n) + " bytes needed at byte " +
+                                      std::to_string(pos_) + ", " + std::to_string(b_.size() - 8 - pos_) + " remain");
   }
   std::uint32_t u32() {
     need(4);
@@ -136,7 +154,7 @@ class Reader {
   }
   std::string str() {
     const std::uint32_t n = u32();
-    if (n > (1u << 24)) throw Error("reflection table " + file_ + ": corrupt string length");
+    if (n > (1u << 24)) throw InputFileError(file_, "corrupt string length " + std::to_string(n) + " at byte " + std::to_string(pos_ - 4));
     need(n);
     std::string s = b_.substr(pos_, n);
     pos_ += n;
@@ -284,22 +302,18 @@ void ReflectionTable::save(const std::filesystem::path& file) const {
 }
 
 ReflectionTable ReflectionTable::load(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error("reflection table: cannot open " + file.string());
-  const std::string b((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string name = file.string();
-  if (b.size() < 16 || std::memcmp(b.data(), kMagic, 8) != 0)
-    throw Error("reflection table " + name + ": not a PLMRTAB file (bad magic)");
+  const std::string b = read_input_file(file, "reflection table");
+  const auto fail = [&](const std::string& what) { throw InputFileError(name, what); };
+  if (b.size() < 16 || std::memcmp(b.data(), kMagic, 8) != 0) fail("not a PLMRTAB reflection table (bad magic)");
   std::uint64_t stored;
   std::memcpy(&stored, b.data() + b.size() - 8, 8);
-  if (fnv1a(b.data(), b.size() - 8) != stored)
-    throw Error("reflection table " + name + ": checksum mismatch (file corrupt or truncated)");
+  if (fnv1a(b.data(), b.size() - 8) != stored) fail("checksum mismatch (reflection table corrupt or truncated)");
   Reader rr(b, name);
   for (int i = 0; i < 2; ++i) rr.u32();  // magic
   const std::uint32_t version = rr.u32();
-  if (version != kVersion)
-    throw Error("reflection table " + name + ": version " + std::to_string(version) + " not supported");
-  if (rr.u32() != kByteOrder) throw Error("reflection table " + name + ": foreign byte order");
+  if (version != kVersion) fail("reflection table version " + std::to_string(version) + " not supported");
+  if (rr.u32() != kByteOrder) fail("foreign byte order");
   const std::uint32_t nl = rr.u32(), nt = rr.u32(), np = rr.u32();
   rr.str();  // units
   TableMetadata meta;
@@ -308,18 +322,36 @@ ReflectionTable ReflectionTable::load(const std::filesystem::path& file) {
   meta.config_hash = rr.str();
   meta.notes = rr.str();
   const std::string hash = rr.str();
-  meta.period_nm = rr.f64();
-  meta.resolution_nm = rr.f64();
+  meta.period_nm = checked_scalar(rr.f64(), "period_nm", name);
+  meta.resolution_nm = checked_scalar(rr.f64(), "resolution_nm", name);
+  // The sizes against the bytes the file holds, before anything of their size is allocated:
+  // the axes, then nl·nt·np Jones entries and the checksum, exactly.
+  rr.need((std::uint64_t{nl} + nt + np) * 8);
+  const std::uint64_t left = b.size() - 8 - rr.pos() - (std::uint64_t{nl} + nt + np) * 8;
+  const std::uint64_t entries = std::uint64_t{nl} * nt * np;  // < 2^96 would overflow: bound each first
+  if (nl == 0 || nt == 0 || np == 0 || entries / nl / nt != np || entries > left / sizeof(JonesReflection) ||
+      entries * sizeof(JonesReflection) != left)
+    fail("size mismatch: " + std::to_string(nl) + " x " + std::to_string(nt) + " x " + std::to_string(np) +
+         " entries of " + std::to_string(sizeof(JonesReflection)) + " bytes, but " + std::to_string(left) +
+         " bytes follow the axes");
   TableGrid g;
   for (std::uint32_t i = 0; i < nl; ++i) g.lambda_nm.push_back(rr.f64());
   for (std::uint32_t i = 0; i < nt; ++i) g.cos_theta.push_back(rr.f64());
   for (std::uint32_t i = 0; i < np; ++i) g.cos_phi.push_back(rr.f64());
+  check_file_axis(g.lambda_nm, "lambda_nm", 1e-9, kFileMaxWavelengthNm, name);
+  check_file_axis(g.cos_theta, "cos_theta", 0.0, 1.0, name);
+  check_file_axis(g.cos_phi, "cos_phi", 0.0, 1.0, name);
   ReflectionTable t(std::move(g), std::move(meta));
   const std::size_t bytes = t.data_.size() * sizeof(JonesReflection);
-  rr.need(bytes + 8);
-  if (rr.pos() + bytes + 8 != b.size()) throw Error("reflection table " + name + ": size mismatch");
   std::memcpy(static_cast<void*>(t.data_.data()), b.data() + rr.pos(), bytes);
-  if (t.content_hash() != hash) throw Error("reflection table " + name + ": content hash mismatch");
+  for (std::size_t k = 0; k < t.data_.size(); ++k) {
+    const JonesReflection& j = t.data_[k];
+    for (const Complex* c : {&j.ss, &j.sp, &j.ps, &j.pp})
+      if (!std::isfinite(c->real()) || !std::isfinite(c->imag()))
+        fail("Jones entry " + std::to_string(k) + " (byte " + std::to_string(rr.pos() + k * sizeof(JonesReflection)) +
+             "): not finite");
+  }
+  if (t.content_hash() != hash) fail("content hash mismatch");
   return t;
 }
 
