@@ -1,10 +1,17 @@
 #include "app_context.hpp"
 
+#include <chrono>
+#include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <set>
+#include <stdexcept>
 
 #include "plumage/atomic_file.hpp"
 #include "plumage/builtin_plugins.hpp"
+#include "plumage/memory_budget.hpp"
 #include "progress.hpp"
 
 namespace plumage::cli {
@@ -50,6 +57,72 @@ PreparationOptions AppContext::preparation() const {
     bar->progress->advance(done);
   };
   return options;
+}
+
+namespace {
+// Prints report_step() lines: a status step (total 0) once; of a counted step the first and last
+// line and at most one every 10 s between, with the elapsed time and the ETA from the mean rate.
+class StepPrinter {
+ public:
+  void operator()(std::string_view step, double done, double total, std::string_view detail) {
+    using clock = std::chrono::steady_clock;
+    std::lock_guard lock(mutex_);
+    const auto now = clock::now();
+    // A status line (no total: "bem: dense LU (...)") is printed once per process: parallel
+    // solves of many instances repeat it, and it says only which step runs.
+    if (total <= 0) {
+      if (!status_.emplace(step).second) return;
+      std::cerr << step << (detail.empty() ? "" : ": ") << detail << "\n";
+      return;
+    }
+    auto [it, first] = steps_.try_emplace(std::string(step), State{now, now});
+    const double elapsed = std::chrono::duration<double>(now - it->second.start).count();
+    const bool last = total > 0 && done >= total;
+    if (!first && !last && std::chrono::duration<double>(now - it->second.printed).count() < 10.0) return;
+    it->second.printed = now;
+    std::string line = std::string(step);
+    char buf[160];
+    if (total > 0) {
+      std::snprintf(buf, sizeof buf, " %.0f/%.0f", done, total);
+      line += buf;
+    }
+    if (!detail.empty()) line += ": " + std::string(detail);
+    std::snprintf(buf, sizeof buf, ", %.0f s", elapsed);
+    line += buf;
+    if (total > 0 && done > 0 && !last) {
+      std::snprintf(buf, sizeof buf, ", ETA %.0f s", elapsed * (total - done) / done);
+      line += buf;
+    }
+    std::cerr << line << "\n";
+    if (last) steps_.erase(it);
+  }
+
+ private:
+  struct State {
+    std::chrono::steady_clock::time_point start, printed;
+  };
+  std::mutex mutex_;
+  std::map<std::string, State, std::less<>> steps_;
+  std::set<std::string, std::less<>> status_;
+};
+}  // namespace
+
+void AppContext::apply_budget_and_progress() const {
+  if (!max_memory.empty()) {
+    try {
+      set_memory_limit(parse_memory_size(max_memory), "--max-memory " + max_memory);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--max-memory: ") + e.what());
+    }
+  }
+  if (quiet) {
+    set_step_progress_sink({});
+  } else {
+    auto printer = std::make_shared<StepPrinter>();
+    set_step_progress_sink([printer](std::string_view step, double done, double total, std::string_view detail) {
+      (*printer)(step, done, total, detail);
+    });
+  }
 }
 
 void AppContext::warn_about_problems() const {

@@ -33,6 +33,11 @@ class AppContext {
   std::vector<std::filesystem::path> plugin_dirs;  // from --plugin-path
   bool quiet = false;
   std::string tables = "build";  // --tables: build | preview | never
+  std::string max_memory;        // --max-memory SIZE ("" = the machine's, memory_budget.hpp)
+
+  // After parsing: the process's memory budget from --max-memory (UsageError for a bad size) and
+  // the step-progress sink that prints long library steps on stderr (none with --quiet).
+  void apply_budget_and_progress() const;
 
   // How the preparation step (prepare_species) may get a model's tables (--tables), with a
   // progress line on stderr unless --quiet.

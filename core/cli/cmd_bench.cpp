@@ -13,16 +13,26 @@ namespace plumage::cli {
 
 // `plumage bench <type> [--param value ...] [--record FILE]`: the registered benchmark of that type
 // (benchmark.hpp) with its parameters from the flags (param_flags.hpp).
-void run_registered_benchmark(AppContext& context, std::vector<std::string> args) {
-  std::string record;  // --record FILE is the command's, not the benchmark's
+// Removes `--flag VALUE` / `--flag=VALUE` from args and returns VALUE ("" when absent).
+static std::string take_flag(std::vector<std::string>& args, const std::string& flag) {
   for (std::size_t i = 0; i < args.size(); ++i) {
-    if (args[i] == "--record" || args[i].rfind("--record=", 0) == 0) {
-      const bool inline_value = args[i].size() > 8;
-      if (!inline_value && i + 1 >= args.size()) throw UsageError("--record: needs a file");
-      record = inline_value ? args[i].substr(9) : args[i + 1];
+    if (args[i] == flag || args[i].rfind(flag + "=", 0) == 0) {
+      const bool inline_value = args[i].size() > flag.size();
+      if (!inline_value && i + 1 >= args.size()) throw UsageError(flag + ": needs a value");
+      std::string value = inline_value ? args[i].substr(flag.size() + 1) : args[i + 1];
       args.erase(args.begin() + static_cast<std::ptrdiff_t>(i), args.begin() + static_cast<std::ptrdiff_t>(i + (inline_value ? 1 : 2)));
-      break;
+      return value;
     }
+  }
+  return {};
+}
+
+void run_registered_benchmark(AppContext& context, std::vector<std::string> args) {
+  const std::string record = take_flag(args, "--record");  // the command's, not the benchmark's
+  // The global --max-memory after `bench <name>` too (bench takes everything after it).
+  if (std::string budget = take_flag(args, "--max-memory"); !budget.empty()) {
+    context.max_memory = budget;
+    context.apply_budget_and_progress();
   }
   const PluginRegistry& registry = context.registry();
   const auto types = registry.types_of_kind(Benchmark::plugin_kind);

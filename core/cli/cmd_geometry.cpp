@@ -34,9 +34,7 @@ void run(AppContext& context, const Options& o) {
   check_output_folder_flag("--out", o.out);
   SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
   context.warn_about_problems();
-  if (!config.structure) {
-    throw ConfigError(config.root.mark(), "structure", "the config has no 'structure:' section");
-  }
+  required_structure(config);
   const std::string stem = config.species + (config.variant.empty() ? "" : "-" + config.variant);
   GeometryStatistics stats;
   std::vector<CrossSection> sections;
@@ -62,6 +60,7 @@ void run(AppContext& context, const Options& o) {
   }
   // Everything generated and valid: now write.
   if (!o.out.empty()) {
+    for (const CrossSection& cs : sections) check_cross_section_pictures(cs, o.pictures);
     create_output_directory(o.out, "--out");
     for (const CrossSection& cs : sections) {
       write_cross_section_files(cs, std::filesystem::path(o.out) / (stem + "-" + std::to_string(cs.instance)), o.pictures);

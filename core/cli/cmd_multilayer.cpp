@@ -36,11 +36,8 @@ void run(AppContext& context, const Options& o) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--stack: ") + e.what());
   }
-  const auto lambdas = parse_samples(o.lambda_nm, "--lambda-nm");
+  const auto lambdas = parse_wavelengths(o.lambda_nm, "--lambda-nm");
   const auto thetas = parse_samples(o.theta_deg, "--theta-deg");
-  for (double l : lambdas) {
-    if (!(l > 0)) throw UsageError("--lambda-nm: wavelengths must be positive");
-  }
   for (double t : thetas) {
     if (t < 0 || t > 90) throw UsageError("--theta-deg: angles must be in [0, 90]");
   }

@@ -2,6 +2,7 @@
 // (λ, ω_i) → a FarFieldSet file, plus optional Eq. 10 CSV and a Fig. 7-style picture, through
 // the library (plumage/simulation.hpp).
 #include <iostream>
+#include <limits>
 #include <optional>
 #include <sstream>
 
@@ -33,7 +34,7 @@ void run(AppContext& context, const Options& o) {
   check_output_flag("--csv", o.csv, {o.config}, "species config");
   const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
   SimulationRequest request;
-  if (!o.lambda_nm.empty()) request.lambdas_nm = parse_samples(o.lambda_nm, "--lambda-nm");
+  if (!o.lambda_nm.empty()) request.lambdas_nm = parse_wavelengths(o.lambda_nm, "--lambda-nm");
   request.theta_deg = parse_samples(o.theta_deg, "--theta-deg");
   request.phi_deg = parse_samples(o.phi_deg, "--phi-deg");
   request.instances = o.instances;
@@ -79,7 +80,7 @@ void add_simulate_command(CLI::App& app, AppContext& context) {
   cmd->add_option("--lambda-nm", o->lambda_nm, "Wavelengths (default: the config's simulation grid)");
   cmd->add_option("--theta-deg", o->theta_deg, "Incident θ_i in degrees (list or range)")->capture_default_str();
   cmd->add_option("--phi-deg", o->phi_deg, "Incident φ_i in degrees (list or range)")->capture_default_str();
-  cmd->add_option("--instances", o->instances, "Barbule instances (default: the config's)");
+  cmd->add_option("--instances", o->instances, "Barbule instances (default: the config's)")->check(CLI::Range(1, std::numeric_limits<int>::max()));
   cmd->add_option("--out", o->out, "FarFieldSet file to write (.ffs)")->required();
   cmd->add_option("--pattern", o->pattern, "Draw a Fig. 7-style picture to this PNG");
   cmd->add_option("--csv", o->csv,

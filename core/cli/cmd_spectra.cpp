@@ -21,7 +21,7 @@ struct Options {
 };
 
 void run(AppContext& context, const Options& o) {
-  const auto lambdas = parse_samples(o.lambda_nm, "--lambda-nm");
+  const auto lambdas = parse_wavelengths(o.lambda_nm, "--lambda-nm");
   const auto thetas = parse_samples(o.theta_deg, "--theta-deg");
   for (double t : thetas) {
     if (t < 0 || t > 90) throw UsageError("--theta-deg: angles must be in [0, 90]");

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <iterator>
 #include <optional>
 #include <memory>
@@ -154,9 +155,9 @@ void add_table_command(CLI::App& app, AppContext& context) {
   const auto count = [](const char* what, int production, int preview) {
     return std::string(what) + " (default by fidelity: " + std::to_string(production) + " / " + std::to_string(preview) + ")";
   };
-  cb->add_option("--n-lambda", b->request.grid.n_lambda, count("Wavelengths", kProductionTableGrid.n_lambda, kPreviewTableGrid.n_lambda));
-  cb->add_option("--n-theta", b->request.grid.n_theta, count("cos theta nodes k/n", kProductionTableGrid.n_theta, kPreviewTableGrid.n_theta));
-  cb->add_option("--n-phi", b->request.grid.n_phi, count("cos phi_local nodes k/n", kProductionTableGrid.n_phi, kPreviewTableGrid.n_phi));
+  cb->add_option("--n-lambda", b->request.grid.n_lambda, count("Wavelengths", kProductionTableGrid.n_lambda, kPreviewTableGrid.n_lambda))->check(CLI::Range(1, std::numeric_limits<int>::max()));
+  cb->add_option("--n-theta", b->request.grid.n_theta, count("cos theta nodes k/n", kProductionTableGrid.n_theta, kPreviewTableGrid.n_theta))->check(CLI::Range(1, std::numeric_limits<int>::max()));
+  cb->add_option("--n-phi", b->request.grid.n_phi, count("cos phi_local nodes k/n", kProductionTableGrid.n_phi, kPreviewTableGrid.n_phi))->check(CLI::Range(1, std::numeric_limits<int>::max()));
   cb->add_option("--resolution-nm", b->resolution_nm, "Grid step (default: the builder's for the fidelity)");
   cb->add_option("--k-step", b->k_step, "Bloch-k grid step in 1/um (0: one run per entry)");
   cb->add_flag("--restart", b->request.restart, "Ignore the checkpoint <out>.partial of an interrupted build");

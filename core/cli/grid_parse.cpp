@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app_context.hpp"
+#include "plumage/param_table.hpp"
 
 namespace plumage::cli {
 
@@ -51,6 +52,18 @@ std::vector<double> parse_samples(std::string_view text, std::string_view option
     }
     if (comma == std::string_view::npos) break;
     start = comma + 1;
+  }
+  return out;
+}
+
+std::vector<double> parse_wavelengths(std::string_view text, std::string_view option) {
+  std::vector<double> out = parse_samples(text, option);
+  const Limits range = Limits::wavelength_nm();
+  for (double l : out) {
+    if (!range.admits(l)) {
+      throw UsageError(std::string(option) + ": wavelength " + format_param_number(l) + " nm is out of range: must be " +
+                       range.describe());
+    }
   }
   return out;
 }

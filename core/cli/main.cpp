@@ -1,5 +1,6 @@
 // `plumage`: the command-line front end. Exit status 0 on success, 2 for bad input (config,
-// plug-in, command line, or an output path that would destroy something; nothing is written), 1
+// plug-in, command line, an output path that would destroy something, or a job over its memory or
+// work budget; nothing is written), 1
 // for any other failure.
 #include <iostream>
 
@@ -8,6 +9,7 @@
 #include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 #include "plumage/input_file.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/version.hpp"
 
 int main(int argc, char** argv) {
@@ -26,12 +28,17 @@ int main(int argc, char** argv) {
                  "warning in every file) or never (refuse to build)")
       ->check(CLI::IsMember({"build", "preview", "never"}))
       ->capture_default_str();
+  app.add_option("--max-memory", context.max_memory,
+                 "Memory budget of every solver and builder, e.g. 8GiB, 512MiB, 2GB (default: what the "
+                 "machine has: MemAvailable and any cgroup limit, whichever is smaller); a job whose estimated "
+                 "peak is larger is refused before it starts (exit status 2)");
   // Global options may follow the subcommand (`plumage characterize ... --tables preview`).
   app.fallthrough();
   app.require_subcommand(1);
   // Warnings (plumage/diagnostics.hpp) are echoed on stderr unless --quiet.
   app.parse_complete_callback([&context] {
     if (context.quiet) plumage::diagnostics().set_echo(nullptr);
+    context.apply_budget_and_progress();
   });
 
   add_plugins_command(app, context);
@@ -64,6 +71,9 @@ int main(int argc, char** argv) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const plumage::OutputPathError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 2;
+  } catch (const plumage::MemoryBudgetError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
   } catch (const UsageError& e) {

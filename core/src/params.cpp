@@ -101,6 +101,17 @@ bool ParamView::is_null() const { return !state_->node || state_->node.IsNull();
 
 void ParamView::accept(std::string_view key) const { state_->known.insert(std::string(key)); }
 
+void ParamView::note(const ParamSpec& spec, bool defaulted) const {
+  for (auto& [row, absent] : state_->notes) {
+    if (row.name == spec.name) {
+      row = spec;
+      absent = defaulted;
+      return;
+    }
+  }
+  state_->notes.emplace_back(spec, defaulted);
+}
+
 std::vector<std::string> ParamView::known_keys() const { return {state_->known.begin(), state_->known.end()}; }
 
 bool ParamView::has(std::string_view key) const {

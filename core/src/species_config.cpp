@@ -27,6 +27,16 @@ YAML::Node merged(const YAML::Node& base, const YAML::Node& over) {
   return out;
 }
 
+void check_variant_name(const ParamView& raw, const std::string& name, const std::vector<std::string>& variants,
+                        const char* key) {
+  if (std::find(variants.begin(), variants.end(), name) != variants.end()) return;
+  std::string msg = "unknown variant '" + name + "'";
+  if (auto near = nearest_name(name, variants)) msg += " (did you mean '" + *near + "'?)";
+  std::string all;
+  for (const auto& v : variants) all += (all.empty() ? "" : ", ") + v;
+  raw.fail(key, msg + "; variants: " + all);
+}
+
 std::vector<std::string> variant_names(const ParamView& root) {
   std::vector<std::string> names;
   if (root.has("variants")) {
@@ -69,6 +79,14 @@ SpeciesConfig load_species_config(const std::filesystem::path& file, const Plugi
   return load_species_config(ConfigDocument::load(file), registry, requested_variant);
 }
 
+const StructureGenerator& required_structure(const SpeciesConfig& config) {
+  if (!config.structure) {
+    throw ConfigError(config.root.mark_of("species"), "structure",
+                      "no 'structure:' section (simulate, geometry and characterize need one to generate cross sections)");
+  }
+  return *config.structure;
+}
+
 void prepare_species(const SpeciesConfig& config, const PreparationOptions& options) {
   if (config.reflection) config.reflection->prepare(options);
 }
@@ -93,19 +111,16 @@ SpeciesConfig load_species_config(const ConfigDocument& doc, const PluginRegistr
   // Build the merged tree of the chosen variant.
   YAML::Node tree = raw.state()->node;
   if (!config.variants.empty()) {
-    if (config.variant.empty()) raw.fail("variant", "missing required key 'variant' (the default variant)");
-    if (std::find(config.variants.begin(), config.variants.end(), config.variant) ==
-        config.variants.end()) {
-      std::string msg = "unknown variant '" + config.variant + "'";
-      if (auto near = nearest_name(config.variant, config.variants)) {
-        msg += " (did you mean '" + *near + "'?)";
-      }
-      std::string all;
-      for (const auto& v : config.variants) all += (all.empty() ? "" : ", ") + v;
-      raw.fail(requested_variant.empty() ? "variant" : "variants", msg + "; variants: " + all);
-    }
+    if (default_variant.empty()) raw.fail("variant", "missing required key 'variant' (the default variant)");
+    // The file's default is checked whichever variant is asked for, so that every command (and
+    // `plumage check`, which loads each variant by name) refuses a default that names no variant.
+    check_variant_name(raw, default_variant, config.variants, "variant");
+    if (!requested_variant.empty()) check_variant_name(raw, requested_variant, config.variants, "variants");
     const YAML::Node& base = raw.state()->node;
-    tree = merged(base, base["variants"][config.variant]);
+    const YAML::Node& over = base["variants"][config.variant];
+    tree = merged(base, over);
+    config.nominal_stack_from_structure =
+        over.IsMap() && over["structure"] && !over["nominal_stack"] && base["nominal_stack"];
   }
   ParamView root = make_root_view(tree, raw.file());
   root.accept("variants");
@@ -116,7 +131,9 @@ SpeciesConfig load_species_config(const ConfigDocument& doc, const PluginRegistr
   config.common_name = root.text_or("common_name", config.species);
   root.accept("description");
 
+  // Parsed (and so checked) either way; not used for a variant whose structure differs from it.
   if (root.has("nominal_stack")) config.nominal_stack = parse_layer_profile(root.child("nominal_stack"));
+  if (config.nominal_stack_from_structure) config.nominal_stack.reset();
 
   PluginContext context = registry.context(doc.directory());
   if (root.has("reflection")) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "plumage/params.hpp"
+#include "plumage/plugin.hpp"
 
 namespace plumage {
 
@@ -22,6 +23,8 @@ struct ParamView::State {
   std::map<std::string, std::shared_ptr<State>> child_by_key;  // one state per key
   std::vector<std::shared_ptr<State>> item_states;             // sequence items
   bool items_made = false;
+  // The declarations read here, in reading order (ParamView::note); a key noted twice keeps its last row.
+  std::vector<std::pair<ParamSpec, bool>> notes;
   // Values replaced in a derived document (ConfigDocument::derive) and where they came from, shared
   // by every view of that document: messages about them name their source, not a file position.
   std::shared_ptr<std::vector<std::pair<YAML::Node, std::string>>> overrides;

@@ -108,6 +108,10 @@ struct MethodRun {
 // estimated remaining seconds (each method priced at its own mean so far; see run_comparison).
 using ComparisonProgress = std::function<void(std::size_t done, std::size_t total, double remaining_s)>;
 
+// Refuses (MemoryBudgetError, exit status 2) a comparison any of whose methods would not fit at
+// any of its wavelengths (ScatteringSolver::estimate_memory); run_comparison calls it first, so
+// a BEM method over the budget stops the run before the first method starts.
+void check_comparison_memory(const Comparison& comparison, const ComparisonSegment& segment);
 // Solves run_comparison makes: methods × wavelengths × distinct θ_i.
 std::size_t comparison_solve_count(const Comparison& comparison);
 

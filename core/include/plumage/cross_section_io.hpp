@@ -2,6 +2,8 @@
 // pictures (white air, grey keratin, black melanin; mixtures shaded by melanin fraction).
 #pragma once
 
+#include "plumage/memory_budget.hpp"
+
 #include <iosfwd>
 #include <optional>
 #include <utility>
@@ -28,6 +30,9 @@ void write_cross_section_svg(std::ostream& out, const CrossSection& section, con
 
 // The same two panels rasterised (scanline polygon fill; the reduced panel samples the stack
 // along every top vertex's normal). Write it with write_png (image.hpp).
+// Refuses (MemoryBudgetError) a picture whose raster would not fit (memory_budget.hpp).
 Image render_cross_section(const CrossSection& section, const SvgOptions& options = {});
+// The raster's memory (what render_cross_section checks first).
+MemoryEstimate estimate_picture_memory(const CrossSection& section, const SvgOptions& options = {});
 
 }  // namespace plumage

@@ -30,6 +30,9 @@ struct CrossSectionPictures {
   double window_um = 0.0;  // > 0: draw only the central window of this width
   double pixels_per_um = 50.0;
 };
+// Refuses (MemoryBudgetError, exit status 2) pictures whose raster would not fit: callers check
+// every instance before writing the first (write_cross_section_files checks its own too).
+void check_cross_section_pictures(const CrossSection& section, const CrossSectionPictures& pictures);
 // Writes <base>.xsec and the pictures asked for (<base>.svg, <base>.png), each atomically.
 void write_cross_section_files(const CrossSection& section, const std::filesystem::path& base,
                                const CrossSectionPictures& pictures);

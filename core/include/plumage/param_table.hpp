@@ -256,7 +256,18 @@ class ParamTable {
   void read_into(const ParamView& section, T& out) const {
     for (const Entry& e : entries_) {
       if (e.applies && !e.applies(out)) continue;
-      if (e.read) e.read(section, out);
+      if (!e.read) continue;
+      // Noted before reading, so that a failing read still leaves the row (check --resolved).
+      const bool absent = !section.has(e.spec.name);
+      section.note(e.spec, absent);
+      if (absent && e.spec.type == "map") {
+        for (ParamSpec sub : e.nested) {
+          if (!sub.condition.empty()) continue;  // depends on values not given
+          sub.name = e.spec.name + "." + sub.name;
+          section.note(sub, true);
+        }
+      }
+      e.read(section, out);
     }
   }
   // The declarations as documentation rows; nested tables as name.sub rows after their map row.

@@ -20,6 +20,8 @@
 
 namespace plumage {
 
+struct ParamSpec;  // plugin.hpp
+
 // Admissible interval of a number. Unset ends are unbounded.
 struct Limits {
   std::optional<double> min;
@@ -32,6 +34,17 @@ struct Limits {
   static Limits closed(double lo, double hi) { return {lo, hi, false, false}; }
   static Limits at_least(double lo) { return {lo, std::nullopt, false, false}; }
   static Limits unit_interval() { return closed(0.0, 1.0); }
+  // Every wavelength a command or config takes (issue 23): 100 nm (vacuum UV, well below the
+  // ~300 nm of birds' UV vision) to 5 µm (mid-infrared, past the near-IR). The materials'
+  // dispersion (paper Eq. 1, Cauchy fits in the visible) means nothing far outside; 5 nm or
+  // 1e9 nm is a typo, not a study.
+  static Limits wavelength_nm() { return closed(100.0, 5000.0); }
+  // Scene coordinates (positions, centres, corners, edges) in mm: within a kilometre of the origin.
+  // A scene is a bird or a feather in a room; the renderer's single-precision geometry (Embree)
+  // keeps no detail of a 0.01 mm barbule that far out, and aborts on bounds near float's limit.
+  static Limits scene_coordinate_mm() { return closed(-1e6, 1e6); }
+  // Scene sizes (lengths, radii, widths) in mm: positive, at most a kilometre (as above).
+  static Limits scene_length_mm() { return {0.0, 1e6, true, false}; }
 
   bool admits(double v) const;
   std::string describe() const;  // e.g. "> 0", "in [0, 1]"
@@ -92,6 +105,10 @@ class ParamView {
 
   // Reject unknown keys in this map and in every child view handed out so far, recursively.
   void finish() const;
+
+  // What a declaration (ParamTable) read here: its row and whether the key was absent, so that
+  // `plumage check --resolved` can print every parameter with its default, unit and doc.
+  void note(const ParamSpec& spec, bool defaulted) const;
 
   [[noreturn]] void fail(std::string_view key, const std::string& message) const;
   [[noreturn]] void fail_here(const std::string& message) const;

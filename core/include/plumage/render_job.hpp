@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "plumage/feather_bsdf.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/renderer.hpp"
 #include "plumage/scene_config.hpp"
@@ -52,6 +53,10 @@ struct RenderedView {
   RenderStats stats;
   double cpu_s = 0.0;  // process CPU time of the render
 };
+
+// The image buffers of one view (memory_budget.hpp); RenderJob refuses views that would not fit
+// (MemoryBudgetError, exit status 2) when it is made, before any geometry or material.
+MemoryEstimate estimate_view_memory(const SceneView& view);
 
 class RenderJob {
  public:

@@ -16,6 +16,7 @@
 #include "plumage/cross_section.hpp"
 #include "plumage/far_field.hpp"
 #include "plumage/local_reflection.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/plugin.hpp"
 
 namespace plumage {
@@ -40,6 +41,16 @@ class ScatteringSolver : public PluginObject {
   virtual std::vector<FarField> solve(const Prepared& prepared, double lambda_nm,
                                       double theta_i_rad, std::span<const double> phi_i_rad,
                                       std::span<const double> phi_o_rad) const = 0;
+
+  // Peak memory of one solve() of `section` at λ with `n_phi_i` incident azimuths and `n_phi_o`
+  // outgoing directions, estimated without doing the work (plumage/memory_budget.hpp): what
+  // `plumage check` reports, and what solve() refuses with MemoryBudgetError (exit status 2) where
+  // it would not fit. Default: an empty estimate (a solver with nothing large to hold).
+  virtual MemoryEstimate estimate_memory(const CrossSection& section, double lambda_nm, std::size_t n_phi_i,
+                                         std::size_t n_phi_o) const {
+    (void)section, (void)lambda_nm, (void)n_phi_i, (void)n_phi_o;
+    return {};
+  }
 };
 
 }  // namespace plumage

@@ -58,12 +58,21 @@ struct SpeciesConfig {
   std::vector<std::string> variants;  // all variants in the file, in file order
   ParamView root;                     // the merged view of the selected variant
   std::optional<LayerProfile> nominal_stack;
+  // The selected variant overrides `structure:` but not `nominal_stack:`: the file's nominal_stack
+  // describes the base structure, not this one, so it is not used (nominal_stack stays empty) and
+  // `plumage spectra` takes the stack under the apex of the variant's own instance 0 (issue 23).
+  bool nominal_stack_from_structure = false;
   std::shared_ptr<const LocalReflection> reflection;
   std::shared_ptr<const StructureGenerator> structure;
   std::shared_ptr<const ScatteringSolver> solver;  // `solver:` (default: approximate)
   std::string solver_type;
   SimulationSettings simulation;  // the `simulation:` section over its own fidelity preset
 };
+
+// The species' structure generator. A species without `structure:` is refused with one message
+// for every command that needs one and for `plumage check` (ConfigError at the file's top, field
+// `structure`).
+const StructureGenerator& required_structure(const SpeciesConfig& config);
 
 // Loads, merges the chosen variant (default: the file's `variant`) and validates every section,
 // creating the plug-ins it names. Throws ConfigError on any problem.

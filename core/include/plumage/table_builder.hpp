@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "plumage/crystal_cell.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/plugin.hpp"
 #include "plumage/reflection_table.hpp"
 
@@ -32,6 +33,14 @@ class TableBuilder : public PluginObject {
   // Checks this builder's section of the cell (unknown keys, ranges) without building anything;
   // throws ConfigError naming file:line. Default: the builder reads no section.
   virtual void check_cell(const CrystalCell& cell) const {}
+
+  // Peak memory of build(cell, grid), estimated without running anything (plumage/memory_budget.hpp):
+  // what `plumage check` reports, and what build() refuses with MemoryBudgetError (exit status 2)
+  // where it would not fit. Default: an empty estimate.
+  virtual MemoryEstimate estimate_memory(const CrystalCell& cell, const TableGrid& grid) const {
+    (void)cell, (void)grid;
+    return {};
+  }
 };
 
 // For `plumage check`: every builder section of the cell must name a registered table_builder

@@ -3,6 +3,8 @@
 #pragma GCC optimize("fp-contract=off")
 #include "plumage/barbule_outline.hpp"
 
+#include "plumage/memory_budget.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -69,12 +71,14 @@ const ParamTable<OutlineSpec>& outline_table() {
                       {"elliptic_arc", Shape::elliptic_arc}, {"pillow", Shape::pillow}, {"flat", Shape::flat}},
                   required,
                   "elliptic_arc | pillow (flat top, rounded shoulders) | flat (rounded corners)")
-          .number("width_um", scaled(&OutlineSpec::width_nm, 1000.0), "um", required, Limits::positive(),
-                  "x-extent of the top surface")
+          .number("width_um", scaled(&OutlineSpec::width_nm, 1000.0), "um", required, Limits{0.0, 10000.0, true, false},
+                  "x-extent of the top surface (barbules are 10-100 um wide; up to 10 mm allowed)")
           .optional_number("thickness_um", [](OutlineSpec& s) { return GivenThickness{s}; }, "um",
-                           "required (unless the generator computes T)", Limits::positive(), "T: distance of the bottom below the top")
-          .number("spacing_nm", &OutlineSpec::spacing_nm, "nm", 30.0, Limits::positive(),
-                  "vertex spacing along the top (arc length), below a tenth of the width")
+                           "required (unless the generator computes T)", Limits{0.0, 1000.0, true, false},
+                           "T: distance of the bottom below the top (barbules are 1-10 um thick; up to 1 mm allowed)")
+          .number("spacing_nm", &OutlineSpec::spacing_nm, "nm", 30.0, Limits::closed(1.0, 10000.0),
+                  "vertex spacing along the top (arc length), below a tenth of the width; at least 1 nm (finer "
+                  "than any layer a barbule has)")
           .interval("edge_slope_deg", &OutlineSpec::edge_slope_deg, "deg", required, Limits{0.0, 80.0, true, false},
                     "edge slope angle beta ~ U[range]")
           .only_if([](const OutlineSpec& s) { return is(s, Shape::elliptic_arc); }, "shape: elliptic_arc")
@@ -105,6 +109,22 @@ BottomSpec::Mode bottom_mode(const OutlineSpec& s) {
                                           : BottomSpec::Mode::parallel;
 }
 
+// Memory budget (issue 23, plumage/memory_budget.hpp): the outline's vertices (top, bottom and
+// sides at spacing_nm) are held several times over by the generator, the regions cut from them and
+// the pictures: 1 KiB per vertex bounds the measured peaks. `width_um: 1e12` or `spacing_nm: 1e-9`
+// asked for ~1e16 vertices (std::bad_alloc); such a config is refused here, at its key.
+static void check_outline_memory(const ParamView& node, const OutlineSpec& s) {
+  const double perimeter_nm = 2.0 * (s.width_nm + (s.thickness_given ? s.thickness_nm : 0.0));
+  const double vertices = perimeter_nm / s.spacing_nm;
+  MemoryEstimate e;
+  e.job = node.mark().str() + ": barbule outline of " + std::to_string(s.width_nm / 1000.0) + " um x " +
+          (s.thickness_given ? std::to_string(s.thickness_nm / 1000.0) : std::string("?")) + " um at spacing_nm " +
+          std::to_string(s.spacing_nm) + " (~" + std::to_string(vertices) + " vertices)";
+  e.add("outline vertices and their copies", 1024.0 * vertices);
+  e.lower_with = {"outline.spacing_nm (larger)", "outline.width_um", "outline.thickness_um"};
+  check_memory(e);
+}
+
 OutlineSpec parse_outline_spec(const ParamView& node, bool thickness_required) {
   const OutlineSpec s = outline_table().read(node);
   if (thickness_required && !s.thickness_given) node.fail("thickness_um", "missing required key 'thickness_um'");
@@ -128,6 +148,7 @@ OutlineSpec parse_outline_spec(const ParamView& node, bool thickness_required) {
   if (s.thickness_given && relief >= s.thickness_nm) {
     node.fail("thickness_um", "thinner than the roughness relief of top and bottom");
   }
+  check_outline_memory(node, s);
   return s;
 }
 

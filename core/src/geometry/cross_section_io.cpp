@@ -250,7 +250,20 @@ Rgb8 rgb_of(const Material& m) {
 
 }  // namespace
 
+MemoryEstimate estimate_picture_memory(const CrossSection& cs, const SvgOptions& o) {
+  const auto [x0, x1, zmin, zmax, margin, panel, panels] = picture_frame(cs, o);
+  const double s = o.pixels_per_um / 1000.0;
+  const double w = std::max(1.0, (x1 - x0) * s), h = std::max(1.0, panel * panels * s);
+  MemoryEstimate e;
+  e.job = "PNG picture of " + cs.label + ": " + std::to_string(std::lround(std::min(w, 1e18))) + " x " +
+          std::to_string(std::lround(std::min(h, 1e18))) + " pixels";
+  e.add("RGB raster and PNG rows", 2.0 * 3.0 * w * h);
+  e.lower_with = {"--pixels-per-um", "--window-um", "--no-png"};
+  return e;
+}
+
 Image render_cross_section(const CrossSection& cs, const SvgOptions& o) {
+  check_memory(estimate_picture_memory(cs, o));
   const auto [x0, x1, zmin, zmax, margin, panel, panels] = picture_frame(cs, o);
   const double s = o.pixels_per_um / 1000.0;
   const int w = std::max(1, static_cast<int>(std::lround((x1 - x0) * s)));

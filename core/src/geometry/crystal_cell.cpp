@@ -36,16 +36,18 @@ const ParamTable<CrystalCell>& crystal_table() {
                                                                     {"rectangular", Lattice::rectangular}},
                   required,
                   "hexagonal (odd rows shifted by a_x/2) | rectangular (rows above each other)")
-          .number("a_x_nm", &CrystalCell::a_x_nm, "nm", required, Limits::positive(), "period along the surface")
-          .number("a_z_nm", &CrystalCell::a_z_nm, "nm", required, Limits::positive(), "row spacing in depth")
-          .number("rod_diameter_nm", &CrystalCell::rod_diameter_nm, "nm", required, Limits::positive(),
-                  "outer diameter of the rods (melanosomes)")
+          .number("a_x_nm", &CrystalCell::a_x_nm, "nm", required, Limits{0.0, 5000.0, true, false},
+                  "period along the surface (birds' crystals: 100-500 nm; up to 5 um, the longest wavelength)")
+          .number("a_z_nm", &CrystalCell::a_z_nm, "nm", required, Limits{0.0, 5000.0, true, false},
+                  "row spacing in depth (up to 5 um, as a_x_nm)")
+          .number("rod_diameter_nm", &CrystalCell::rod_diameter_nm, "nm", required, Limits{0.0, 5000.0, true, false},
+                  "outer diameter of the rods (melanosomes; up to 5 um, as a_x_nm)")
           .number("core_diameter_nm", &CrystalCell::core_diameter_nm, "nm", 0.0, Limits::non_negative(),
                   "air core of hollow rods (0: solid)")
           .number("channel_diameter_nm", &CrystalCell::channel_diameter_nm, "nm", 0.0, Limits::non_negative(),
                   "channel at (a_x/2, z_j + a_z/2) below each row (rectangular lattices; 0: none)")
           .integer("rows", &CrystalCell::rows, "1", required, Limits::closed(1, 1000), "rows of rods")
-          .number("cortex_nm", &CrystalCell::cortex_nm, "nm", required, Limits::non_negative(),
+          .number("cortex_nm", &CrystalCell::cortex_nm, "nm", required, Limits::closed(0.0, 100000.0),
                   "host material from the surface to the top of the first row")
           .number("expected_peak_nm", &CrystalCell::expected_peak_nm, "nm", 0.0, Limits::non_negative(),
                   "informational: expected reflectance peak at normal incidence (0: not given)")

@@ -129,8 +129,7 @@ CharacterizeResult run(const SpeciesConfig& config, const CharacterizeSettings& 
 CharacterizeResult characterize(const SpeciesConfig& config, const CharacterizeSettings& s, const fs::path& out,
                                 const CharacterizeOptions& options,
                                 const std::function<void(const CharacterizePlan&)>& on_plan) {
-  if (!config.structure)
-    throw ConfigError({config.file.string(), 0, 0}, "structure", "no `structure:` section to characterise");
+  required_structure(config);
   // Output paths before any work: never replace a symlink, device or folder, nor the species file.
   check_output_path(out, "output");
   check_output_not_input(out, "output", config.file, "species config");

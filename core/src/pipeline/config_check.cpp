@@ -1,6 +1,12 @@
 // check_config_file (plumage/config_check.hpp): each kind of configuration loaded by the loader its
-// command uses, so that `plumage check` and a run agree on what is valid.
+// command uses, so that `plumage check` and a run agree on what is valid. Every unit that can fail
+// on its own (a species variant, a scene's feather material, a crystal's builder section) is
+// loaded in turn and its error kept, so that one run of check reports every error of the file.
 #include "plumage/config_check.hpp"
+
+#include <algorithm>
+#include <functional>
+#include <optional>
 
 #include "plumage/comparison.hpp"
 #include "plumage/config_document.hpp"
@@ -14,61 +20,102 @@ namespace plumage {
 
 namespace {
 
-ConfigCheck check_species(const std::filesystem::path& file, const PluginRegistry& registry) {
-  ConfigCheck c{"species", "species", {}};
-  auto variants = species_variants(file);
+// Runs `step`, keeping a bad-input error (ConfigError, PluginError) in `c.errors` once; returns
+// whether it succeeded. Faults (anything else) propagate: check itself failed.
+bool collect(ConfigCheck& c, const std::function<void()>& step) {
+  auto keep = [&c](const std::string& message) {
+    if (std::find(c.errors.begin(), c.errors.end(), message) == c.errors.end()) c.errors.push_back(message);
+  };
+  try {
+    step();
+    return true;
+  } catch (const ConfigError& e) {
+    keep(e.what());
+  } catch (const PluginError& e) {
+    keep(e.what());
+  }
+  return false;
+}
+
+// Every variant by name (the default too, which load_species_config checks against `variants:`
+// whichever is asked for), each with the structure the commands need.
+void check_species(const std::filesystem::path& file, const PluginRegistry& registry, ConfigCheck& c) {
+  c.summary = "species";
+  std::vector<std::string> variants;
+  if (!collect(c, [&] { variants = species_variants(file); })) return;
   if (!variants.empty()) c.summary += ", " + std::to_string(variants.size()) + " variants";
   if (variants.empty()) variants.push_back("");
   for (const auto& v : variants) {
-    const std::string work = pending_preparation(load_species_config(file, registry, v));
-    if (!work.empty()) c.to_prepare.push_back((v.empty() ? "" : v + ": ") + work);
+    collect(c, [&] {
+      const SpeciesConfig config = load_species_config(file, registry, v);
+      required_structure(config);
+      const std::string work = pending_preparation(config);
+      if (!work.empty()) c.to_prepare.push_back((v.empty() ? "" : v + ": ") + work);
+    });
   }
-  return c;
 }
 
 // The scene is created as `plumage render` creates it (the renderer's own table checks its
 // section), and each feather material's species file must load with its variant; an error there
 // points at the scene's material entry as well as into the species file.
-ConfigCheck check_scene(const std::filesystem::path& file, const PluginRegistry& registry) {
-  const RenderJob job(file, {}, registry);
-  const SceneConfig& scene = job.config();
-  std::size_t species_checked = 0;
-  for (const auto& request : scene.feather_requests) {
-    if (!request || request->species_config.empty()) continue;
-    try {
-      load_species_config(request->species_config.string(), registry, request->variant);
-    } catch (const Error& e) {
-      throw ConfigError(request->where, "species", std::string("the species config does not load: ") + e.what());
+void check_scene(const std::filesystem::path& file, const PluginRegistry& registry, ConfigCheck& c) {
+  collect(c, [&] {
+    const RenderJob job(file, {}, registry);
+    const SceneConfig& scene = job.config();
+    std::size_t species_checked = 0;
+    for (const auto& request : scene.feather_requests) {
+      if (!request || request->species_config.empty()) continue;
+      collect(c, [&] {
+        try {
+          required_structure(load_species_config(request->species_config.string(), registry, request->variant));
+        } catch (const Error& e) {
+          throw ConfigError(request->where, "species", std::string("the species config does not load: ") + e.what());
+        }
+      });
+      ++species_checked;
     }
-    ++species_checked;
-  }
-  return {"scene",
-          "scene " + scene.name + ", " + std::to_string(scene.views.size()) + " view(s), " +
-              std::to_string(scene.materials.size()) + " materials, " + std::to_string(species_checked) +
-              " species checked",
-          {}};
+    c.summary = "scene " + scene.name + ", " + std::to_string(scene.views.size()) + " view(s), " +
+                std::to_string(scene.materials.size()) + " materials, " + std::to_string(species_checked) +
+                " species checked";
+  });
 }
 
 // A crystal cell and each table builder's own section of it (CrystalCell::builder_sections).
-ConfigCheck check_crystal(const std::filesystem::path& file, const PluginRegistry& registry) {
-  const CrystalCell cell = load_crystal_cell(file);
-  std::string summary = "crystal " + cell.name;
-  for (const std::string& section : check_builder_sections(cell, registry)) summary += ", " + section + " section checked";
-  return {"crystal", summary, {}};
+void check_crystal(const std::filesystem::path& file, const PluginRegistry& registry, ConfigCheck& c) {
+  collect(c, [&] {
+    const CrystalCell cell = load_crystal_cell(file);
+    c.summary = "crystal " + cell.name;
+    for (const std::string& section : check_builder_sections(cell, registry)) c.summary += ", " + section + " section checked";
+  });
 }
 
 }  // namespace
 
 ConfigCheck check_config_file(const std::filesystem::path& file, const PluginRegistry& registry) {
-  const auto doc = ConfigDocument::load(file);
-  const ParamView root = doc.root();
+  ConfigCheck c;
+  std::optional<ConfigDocument> doc;
+  if (!collect(c, [&] { doc = ConfigDocument::load(file); })) return c;
+  const ParamView root = doc->root();
   // `comparison` before `species`, which a comparison names too.
-  if (root.has("comparison")) return {"comparison", check_comparison_config(file, registry), {}};
-  if (root.has("species")) return check_species(file, registry);
-  if (root.has("crystal")) return check_crystal(file, registry);
-  if (root.has("scene") || root.has("objects")) return check_scene(file, registry);
-  throw ConfigError(root.mark(), "",
-                    "not a plumage configuration: expected a top-level 'species', 'crystal', 'scene' or 'comparison' key");
+  if (root.has("comparison")) {
+    c.kind = "comparison";
+    collect(c, [&] { c.summary = check_comparison_config(file, registry); });
+  } else if (root.has("species")) {
+    c.kind = "species";
+    check_species(file, registry, c);
+  } else if (root.has("crystal")) {
+    c.kind = "crystal";
+    check_crystal(file, registry, c);
+  } else if (root.has("scene") || root.has("objects")) {
+    c.kind = "scene";
+    check_scene(file, registry, c);
+  } else {
+    c.errors.push_back(ConfigError(root.mark(), "",
+                                   "not a plumage configuration: expected a top-level 'species', 'crystal', "
+                                   "'scene' or 'comparison' key")
+                           .what());
+  }
+  return c;
 }
 
 }  // namespace plumage

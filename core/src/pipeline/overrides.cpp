@@ -5,6 +5,7 @@
 #include <string>
 
 #include "plumage/characterize_settings.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/config_sections.hpp"
 #include "plumage/lobe_model.hpp"
 #include "plumage/material_key.hpp"
@@ -19,7 +20,7 @@ void append_samples(const ParamView& item, std::vector<double>& out) {
   const std::string text = item.scalar_text();
   const auto c1 = text.find(':');
   if (c1 == std::string::npos) {
-    out.push_back(item.scalar_number(Limits::positive()));
+    out.push_back(item.scalar_number(Limits::wavelength_nm()));
     return;
   }
   const auto c2 = text.find(':', c1 + 1);
@@ -46,9 +47,11 @@ void read_wavelengths(const ParamView& section, CharacterizeOverrides& o) {
   } else {
     append_samples(list, lambda);
   }
+  const Limits range = Limits::wavelength_nm();
   for (std::size_t k = 0; k < lambda.size(); ++k) {
-    if (!(lambda[k] > 0) || (k && lambda[k] <= lambda[k - 1]))
-      section.fail("lambda_nm", "wavelengths must be positive and ascending");
+    if (!range.admits(lambda[k]))
+      section.fail("lambda_nm", "wavelength " + format_param_number(lambda[k]) + " nm is out of range: must be " + range.describe());
+    if (k && lambda[k] <= lambda[k - 1]) section.fail("lambda_nm", "wavelengths must be positive and ascending");
   }
   if (lambda.empty()) section.fail("lambda_nm", "no wavelengths");
   o.lambda_nm = std::move(lambda);
@@ -70,6 +73,19 @@ void check_counts(const SpeciesConfig& config, const CharacterizeSettings& s) {
   if (s.grid < 2) fail("incident_grid", "a characterisation needs at least 2 incident nodes per axis");
 }
 
+// Work budget (issue 23, plumage/memory_budget.hpp): `--grid 100000` asks for 1e10 fit units per
+// wavelength. The preset grids need at most ~1e5 fits and solves (production: 50 x 20 x 20 units,
+// 50 x 20 x 50 solves); anything past kMaxWorkUnits (1e8) is a typo, refused before any work.
+void check_work_bounds(const CharacterizeSettings& s) {
+  const double lambdas = static_cast<double>(s.lambda_nm.size()), grid = s.grid, instances = s.instances;
+  const std::string counts = " (" + std::to_string(s.lambda_nm.size()) + " wavelengths, grid " + std::to_string(s.grid) +
+                             ", " + std::to_string(s.instances) + " instances)";
+  check_work(lambdas * grid * grid, "characterize " + s.label + ": wavelengths x grid^2 fit units" + counts,
+             "--grid / simulation.incident_grid or --lambda-nm / simulation.wavelengths_nm");
+  check_work(lambdas * grid * instances, "characterize " + s.label + ": wavelengths x grid x instances solves" + counts,
+             "--instances / simulation.instances, --grid or --lambda-nm");
+}
+
 }  // namespace
 
 const ParamTable<CharacterizeOverrides>& characterize_overrides_table() {
@@ -82,7 +98,7 @@ const ParamTable<CharacterizeOverrides>& characterize_overrides_table() {
           .integer("grid", &O::grid, "1", 0, Limits::at_least(2), "incident nodes per axis G")
           .default_text("the preset's")
           .custom("lambda_nm", "list", "nm", "the preset's",
-                  "wavelengths, ascending: numbers or from:to:step ranges (e.g. 400,500 or 400:700:30)", read_wavelengths)
+                  "wavelengths, ascending, in [100, 5000] nm: numbers or from:to:step ranges (e.g. 400,500 or 400:700:30)", read_wavelengths)
           .integer("noise_functions", &O::noise_functions, "1", 512, Limits::closed(1, 65536),
                    "noise pool size (spec 4.8; instance k uses functions 2k and 2k + 1)")
           .number("sigma", &O::sigma, "1", kLobeSigma, Limits::positive(), "D_y spread of both lobes (spec 4.3)");
@@ -109,6 +125,7 @@ CharacterizeSettings characterize_settings(const SpeciesConfig& config, const Pl
   s.noise_functions = o.noise_functions > 0 ? o.noise_functions : defaults.noise_functions;
   s.bin_width_nm = s.lambda_nm.size() > 1 ? s.lambda_nm[1] - s.lambda_nm[0] : 6.0;
   check_counts(config, s);
+  check_work_bounds(s);
   return s;
 }
 

@@ -15,8 +15,8 @@ const ParamTable<SampleRange>& wavelength_table() {
   const FidelityPreset& p = fidelity_preset("production");
   static const auto table =
       ParamTable<SampleRange>{}
-          .number("from", &SampleRange::from, "nm", p.wavelengths_nm.from, Limits::closed(100, 5000), "first wavelength")
-          .number("to", &SampleRange::to, "nm", p.wavelengths_nm.to, Limits::closed(100, 5000),
+          .number("from", &SampleRange::from, "nm", p.wavelengths_nm.from, Limits::wavelength_nm(), "first wavelength")
+          .number("to", &SampleRange::to, "nm", p.wavelengths_nm.to, Limits::wavelength_nm(),
                   "last wavelength (inclusive when on the step)")
           .number("step", &SampleRange::step, "nm", p.wavelengths_nm.step, Limits::positive(), "wavelength step")
           .default_text(per_preset_text([](const FidelityPreset& f) { return format_param_number(f.wavelengths_nm.step); }));

@@ -1,13 +1,34 @@
 // Reflectance spectra of nominal layer stacks (plumage/stack_spectra.hpp).
 #include <complex>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "plumage/charts.hpp"
 #include "plumage/conventions.hpp"
+#include "plumage/cross_section.hpp"
 #include "plumage/stack_spectra.hpp"
 
 namespace plumage {
+
+namespace {
+
+// The stack a species' spectrum is drawn from: its nominal_stack; for a variant that changed its
+// structure but not its nominal_stack (SpeciesConfig::nominal_stack_from_structure), the stack
+// under the apex (highest top vertex, largest z) of its own instance 0, so that the spectrum is the
+// variant's and not the base's. Empty when there is neither (or the structure has no layered model).
+std::optional<LayerProfile> spectrum_stack(const SpeciesConfig& s) {
+  if (s.nominal_stack) return s.nominal_stack;
+  if (!s.nominal_stack_from_structure || !s.structure) return std::nullopt;
+  const CrossSection section = s.structure->generate(0);
+  if (!section.layered || section.top.empty()) return std::nullopt;
+  std::size_t apex = 0;
+  for (std::size_t i = 1; i < section.top.size(); ++i)
+    if (section.top[i].z > section.top[apex].z) apex = i;
+  return layer_profile_at(section, apex);
+}
+
+}  // namespace
 
 std::vector<StackSpectrum> nominal_stack_spectra(const std::vector<SpeciesConfig>& species,
                                                  const std::vector<double>& lambdas_nm,
@@ -16,14 +37,15 @@ std::vector<StackSpectrum> nominal_stack_spectra(const std::vector<SpeciesConfig
                                                  std::vector<std::filesystem::path>* skipped) {
   std::vector<StackSpectrum> out;
   for (const auto& s : species) {
-    if (!s.nominal_stack || !s.reflection) {
+    const std::optional<LayerProfile> stack = spectrum_stack(s);
+    if (!stack || !s.reflection) {
       if (skipped) skipped->push_back(s.file);
       continue;
     }
     prepare_species(s, preparation);
     std::vector<LocalReflection::Request> requests;
     for (double t : thetas_deg) {
-      for (double l : lambdas_nm) requests.push_back({l, {0.0, deg_to_rad(t)}, &*s.nominal_stack});
+      for (double l : lambdas_nm) requests.push_back({l, {0.0, deg_to_rad(t)}, &*stack});
     }
     std::vector<JonesReflection> r(requests.size());
     s.reflection->reflect(requests, r);

@@ -3,6 +3,8 @@
 #include "plumage/atomic_file.hpp"
 #include "plumage/render_job.hpp"
 
+#include "plumage/memory_budget.hpp"
+
 #include <tbb/global_control.h>
 
 #include <chrono>
@@ -89,6 +91,21 @@ RenderJob::RenderJob(const fs::path& scene_file, RenderJobOptions options, const
     for (const SceneView& v : s.config.views) s.views.push_back(&v);
   }
   s.renderer = create_renderer(s.config, s.options.renderer_settings, registry);
+  for (const SceneView* v : s.views) check_memory(estimate_view_memory(*v));
+}
+
+// Memory budget (issue 23, plumage/memory_budget.hpp): a view's image buffers — the renderer's
+// accumulation (double RGB and sample counts), the linear image (float RGB), the display image,
+// the EXR and PNG rows and up to 64 spectral channels of float — about 320 bytes per pixel, before
+// anything is built. `--width 100000 --height 100000` (1e10 pixels) is refused, not std::bad_alloc.
+MemoryEstimate estimate_view_memory(const SceneView& view) {
+  const double pixels = static_cast<double>(view.camera.width) * static_cast<double>(view.camera.height);
+  MemoryEstimate e;
+  e.job = "render of view '" + view.name + "' at " + std::to_string(view.camera.width) + " x " +
+          std::to_string(view.camera.height) + " pixels";
+  e.add("image buffers (RGB, spectral channels, EXR/PNG rows)", 320.0 * pixels);
+  e.lower_with = {"--width/--height or the scene's render.resolution"};
+  return e;
 }
 
 RenderJob::~RenderJob() = default;

@@ -4,13 +4,13 @@
 
 namespace plumage::scene_detail {
 
-Vec3f read_vec3(const ParamView& node, std::string_view key) {
-  const std::vector<double> v = node.numbers(key);
+Vec3f read_vec3(const ParamView& node, std::string_view key, Limits limits) {
+  const std::vector<double> v = node.numbers(key, limits);
   if (v.size() != 3) node.fail(key, "expected 3 numbers [x, y, z], got " + std::to_string(v.size()));
   return to_f({v[0], v[1], v[2]});
 }
-Vec3f read_vec3_or(const ParamView& node, std::string_view key, Vec3f fallback) {
-  return node.has(key) ? read_vec3(node, key) : (node.accept(key), fallback);
+Vec3f read_vec3_or(const ParamView& node, std::string_view key, Vec3f fallback, Limits limits) {
+  return node.has(key) ? read_vec3(node, key, limits) : (node.accept(key), fallback);
 }
 Vec3f read_unit3(const ParamView& node, std::string_view key) {
   const V3 v = from_f(read_vec3(node, key));

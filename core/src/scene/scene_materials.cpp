@@ -33,7 +33,7 @@ TabulatedSpectrum read_spectrum(const ParamView& m, std::string_view key) {
     return s;
   }
   if (!v.is_map()) m.fail(key, "expected a number or {lambda_nm: [...], value: [...]}");
-  s.lambda_nm = v.numbers("lambda_nm", Limits::positive());
+  s.lambda_nm = v.numbers("lambda_nm", Limits::wavelength_nm());
   s.value = v.numbers("value", Limits::unit_interval());
   if (s.lambda_nm.size() != s.value.size() || s.value.empty())
     v.fail("value", "needs as many entries as lambda_nm (" + std::to_string(s.lambda_nm.size()) + ")");

@@ -16,14 +16,15 @@ namespace {
 // for a feather object, a smaller feather for an assembly's body feather.
 ParamTable<FeatherShape> make_shape_table(const FeatherShape& d) {
   using S = FeatherShape;
-  const auto pos = Limits::positive(), nonneg = Limits::non_negative();
+  // Lengths within a kilometre (params.hpp, Limits::scene_length_mm: the renderer's float geometry).
+  const auto pos = Limits::scene_length_mm(), nonneg = Limits::closed(0.0, 1e6);
   return ParamTable<S>{}
       .number("length_mm", &S::length_mm, "mm", d.length_mm, pos, "rachis length covered by the vane (base to tip)")
       .number("calamus_mm", &S::calamus_mm, "mm", d.calamus_mm, nonneg, "bare quill below the vane")
       .number("vane_width_mm", &S::vane_width_mm, "mm", d.vane_width_mm, pos, "full width of the vane at its widest")
       .number("vane_asymmetry", &S::vane_asymmetry, "1", d.vane_asymmetry, Limits::closed(-0.8, 0.8),
               "left half-width x (1 - a), right x (1 + a)")
-      .number("camber_mm", &S::camber_mm, "mm", d.camber_mm, {}, "the vane bends down (-z) by this much at its edges")
+      .number("camber_mm", &S::camber_mm, "mm", d.camber_mm, Limits::scene_coordinate_mm(), "the vane bends down (-z) by this much at its edges")
       .number("rachis_width_mm", &S::rachis_width_mm, "mm", d.rachis_width_mm, pos,
               "diameter at the base, tapering to 20 % at the tip")
       .number("barb_spacing_mm", &S::barb_spacing_mm, "mm", d.barb_spacing_mm, pos, "along the rachis, on each side")
@@ -86,7 +87,7 @@ const ParamTable<BodyShape>& body_table() {
                   [](const ParamView& p, BodyShape& b) { b.center_mm = read_vec3_or(p, "center_mm", {}); })
           .custom("radii_mm", "vector", "mm", "required", "semi-axes x, y (the long axis), z; all > 0",
                   [](const ParamView& p, BodyShape& b) {
-                    b.radii_mm = read_vec3(p, "radii_mm");
+                    b.radii_mm = read_vec3(p, "radii_mm", Limits::scene_length_mm());
                     if (!(b.radii_mm.x > 0 && b.radii_mm.y > 0 && b.radii_mm.z > 0)) p.fail("radii_mm", "must all be > 0");
                   })
           .number("lat_min_deg", &BodyShape::lat_min_deg, "deg", -90.0, Limits::closed(-90, 90),
@@ -153,9 +154,10 @@ const ParamTable<ObjectKeys>& object_table() {
                 [](const ParamView& p, O& o) { o.position_mm = read_vec3_or(p, "position_mm", {}); })
         .only_if(is<K::feather>, "type: feather")
         .custom("rotate_deg", "vector", "deg", "[0, 0, 0]", "Euler angles about x, then y, then z",
-                [](const ParamView& p, O& o) { o.rotate_deg = read_vec3_or(p, "rotate_deg", {}); })
+                [](const ParamView& p, O& o) { o.rotate_deg = read_vec3_or(p, "rotate_deg", {}, Limits::closed(-3600, 3600)); })
         .only_if(is<K::feather>, "type: feather")
-        .number("scale", &O::scale, "1", 1.0, Limits::positive(), "uniform scale of the feather")
+        .number("scale", &O::scale, "1", 1.0, Limits{0.0, 1e4, true, false},
+                "uniform scale of the feather (at most 1e4: its lengths stay within the scene's kilometre)")
         .only_if(is<K::feather>, "type: feather")
         .integer("count", [](O& o) -> int& { return o.spec.assembly.count; }, "1", a.count, Limits::closed(1, 100000),
                  "feathers on the body")
@@ -199,7 +201,7 @@ const ParamTable<ObjectKeys>& object_table() {
                   if (p.has("normal")) o.spec.normal = read_unit3(p, "normal");
                 })
         .only_if(is<K::plane>, "type: plane")
-        .number("size_mm", [](O& o) -> double& { return o.spec.size_mm; }, "mm", 100.0, Limits::positive(),
+        .number("size_mm", [](O& o) -> double& { return o.spec.size_mm; }, "mm", 100.0, Limits::scene_length_mm(),
                 "side of the square")
         .only_if(is<K::plane>, "type: plane");
   }();

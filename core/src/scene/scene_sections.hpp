@@ -14,9 +14,11 @@
 
 namespace plumage::scene_detail {
 
-// [x, y, z] (exactly 3 numbers); absent: the fallback. unit3: normalised, not the zero vector.
-Vec3f read_vec3(const ParamView& node, std::string_view key);
-Vec3f read_vec3_or(const ParamView& node, std::string_view key, Vec3f fallback);
+// [x, y, z] (exactly 3 numbers, each within `limits`: by default a scene coordinate, params.hpp);
+// absent: the fallback. unit3: normalised, not the zero vector.
+Vec3f read_vec3(const ParamView& node, std::string_view key, Limits limits = Limits::scene_coordinate_mm());
+Vec3f read_vec3_or(const ParamView& node, std::string_view key, Vec3f fallback,
+                   Limits limits = Limits::scene_coordinate_mm());
 Vec3f read_unit3(const ParamView& node, std::string_view key);
 
 // A view's camera: `base` (the scene's camera) supplies every key the section leaves out; without

@@ -42,6 +42,11 @@ TableBuildResult build_table_file(const TableBuildRequest& request, const Plugin
   check_output_path(request.out, "output");
   check_output_path(request.out.string() + ".partial", "checkpoint");
   check_output_not_input(request.out, "output", request.crystal_config, "crystal config");
+  const Limits wavelengths = Limits::wavelength_nm();
+  for (const auto& [flag, value] : {std::pair{"--lambda-min", request.lambda_min_nm}, std::pair{"--lambda-max", request.lambda_max_nm}}) {
+    if (!wavelengths.admits(value))
+      throw ConfigError({flag, 0, 0}, "", "wavelength " + format_param_number(value) + " nm is out of range: must be " + wavelengths.describe());
+  }
   const CrystalCell cell = load_crystal_cell(request.crystal_config);
   const TableGridSize preset = request.fidelity == "preview" ? kPreviewTableGrid : kProductionTableGrid;
   const TableGridSize grid{request.grid.n_lambda > 0 ? request.grid.n_lambda : preset.n_lambda,

@@ -26,6 +26,7 @@
 #include "plumage/benchmark.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/error.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/param_table.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/species_config.hpp"
@@ -199,6 +200,10 @@ Run BemBenchmark::run_width(double width_um, const Options& options) const {
   const double theta = deg_to_rad(params_.theta_deg);
   const std::vector<double> phi_i = incident_azimuths(params_.azimuths);
   const auto phi_o = pattern_directions(400).phi_o_rad;
+  // The budget first (issue 23): a segment whose system would not fit is refused in about a second,
+  // before the approximate solver is timed.
+  check_memory(solver_->estimate_memory(cs, params_.lambda_nm, phi_i.size(), phi_o.size()),
+               memory_available(options_.max_memory));
   // approximate solver (its defaults), best of 3
   auto approx = registry_.create_named<ScatteringSolver>("approximate", ParamView{}, context_);
   r.approx_s = 1e300;
@@ -217,6 +222,8 @@ Run BemBenchmark::run_width(double width_um, const Options& options) const {
     r.bem_s = seconds_since(t0);
     r.bem_cpu_s = process_cpu_seconds() - cpu0;
     r.status = "solved (" + std::string(method_name(options_.method)) + ")";
+  } catch (const MemoryBudgetError&) {
+    throw;  // over the budget: the benchmark is refused (exit status 2), not recorded as "not solved"
   } catch (const Error& e) {
     r.bem_s = -1;
     r.status = std::string("not solved: ") + e.what();

@@ -1,7 +1,11 @@
 #include "bem_options.hpp"
 
+#include <stdexcept>
+
 #include <utility>
 #include <vector>
+
+#include "plumage/memory_budget.hpp"
 
 namespace plumage::bem {
 
@@ -75,6 +79,19 @@ ParamTable<BemOptions> make_table() {
                "methods gmres/hmatrix: start from the residual-minimising combination of the earlier solutions")
       .text("log_file", &BemOptions::log_file, d.log_file,
             "append one line of timings and sizes per (lambda, theta_i)")
+      .custom("max_memory", "size", "-", "(the machine's)",
+              "memory budget of one solve, e.g. 8GiB (default: --max-memory, else MemAvailable and any cgroup "
+              "limit): a system whose estimated peak is larger is refused before assembly",
+              [](const ParamView& p, BemOptions& o) {
+                if (!p.has("max_memory")) return;
+                o.max_memory = p.node("max_memory").scalar_text();
+                try {
+                  parse_memory_size(o.max_memory);
+                } catch (const std::invalid_argument& e) {
+                  p.fail("max_memory", e.what());
+                }
+              },
+              [](BemOptions& o) { o.max_memory.clear(); })
       .integer("max_dense_unknowns", &BemOptions::max_dense_unknowns, "1", d.max_dense_unknowns, Limits::positive(),
                "methods dense/gmres: refuse larger systems (memory: 16 N^2 bytes)");
   return t;

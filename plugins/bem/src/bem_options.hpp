@@ -44,6 +44,10 @@ struct BemOptions {
   // Right-hand sides after the first start GMRES from the residual-minimising combination of all
   // earlier solutions (method gmres/hmatrix; NOTES.md §5).
   bool warm_start = true;
+  // Memory budget of one solve ("8GiB"; "" = the process's: --max-memory or what the machine has,
+  // plumage/memory_budget.hpp): a system whose estimated peak (memory_estimate.hpp) is larger is
+  // refused before assembly.
+  std::string max_memory;
   // When set, one line of timings and sizes per (λ, θ_i) is appended to this file.
   std::string log_file;
   // Warnings (issue 9; thresholds measured, NOTES.md "Warnings (issue 9)"). bem.mesh_coarse: some

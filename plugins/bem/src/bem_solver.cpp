@@ -12,6 +12,8 @@
 #include "plumage/atomic_file.hpp"
 #include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
+#include "plumage/memory_budget.hpp"
+#include "memory_estimate.hpp"
 #include "radiation.hpp"
 
 namespace plumage::bem {
@@ -31,6 +33,11 @@ std::string format(const char* fmt, auto... args) {
 // this × h (NOTES.md §5, "Method gmres"): 8 h converged on the coated cylinder and the junction
 // body alike, where 2 h needed 8× the iterations on the junction body and 1 h stagnated.
 constexpr double kGmresNearFieldFactor = 8.0;
+
+// "bem: GMRES (14032 unknowns, 550 nm)": the step name of the progress lines.
+std::string step_name(const char* step, const Mesh& mesh, double lambda_nm) {
+  return format("bem: %s (%d unknowns, %g nm)", step, mesh.unknowns(), lambda_nm);
+}
 }  // namespace
 
 void check_mesh(const Geometry& geometry, const Mesh& mesh, double lambda_nm, const BemOptions& options) {
@@ -85,7 +92,7 @@ std::shared_ptr<const BemPrepared> prepare_geometry(const CrossSection& section)
 }
 
 std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm, double theta,
-                                     const BemOptions& options) {
+                                     const BemOptions& options, int rhs, int far_directions) {
   auto sys = std::make_unique<System>();
   sys->lambda_nm = lambda_nm;
   sys->theta = theta;
@@ -104,29 +111,26 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
                 " GB); use preconditioner: near_field or raise the limit if the machine has the memory");
   }
   if (options.method == BemOptions::Method::hmatrix) {
+    // Before anything is assembled (issue 23): a system over the budget is refused, not killed.
+    check_memory(estimate_system_memory(sys->mesh, lambda_nm, options, rhs, far_directions),
+                 memory_available(options.max_memory));
     auto t0 = std::chrono::steady_clock::now();
     sys->hmatrix = std::make_unique<HMatrix>(sys->mesh, sys->media, sys->k0, sys->beta, options.quadrature,
-                                             options.hmatrix);
+                                             options.hmatrix, step_name("H-matrix assembly", sys->mesh, lambda_nm));
     sys->assembly_seconds = seconds_since(t0);
     t0 = std::chrono::steady_clock::now();
     if (options.hmatrix.preconditioner == HMatrixOptions::Preconditioner::dense_single) {
-      // Tens of minutes at ~35 000 unknowns: say how far the factorisation is (every 10 %).
-      std::function<void(double)> progress;
-      int reported = 0;
+      // Tens of minutes at ~35 000 unknowns: say how far the factorisation is (memory_budget.hpp's
+      // step progress: the CLI prints it with an ETA, -q silences it).
+      report_step(step_name("expanding the H-matrix to dense single precision", sys->mesh, lambda_nm), 0, 0);
       Eigen::MatrixXcf dense = sys->hmatrix->to_dense_single(sys->mesh, sys->media);
-      const auto t_lu = std::chrono::steady_clock::now();
       sys->expand_seconds = seconds_since(t0);
-      if (n >= 10000) {
-        progress = [&](double f) {
-          if (static_cast<int>(10.0 * f) <= reported) return;
-          reported = static_cast<int>(10.0 * f);
-          const double s = seconds_since(t_lu);
-          std::fprintf(stderr, "bem: single-precision LU of %d unknowns at %g nm: %d %% after %.0f s, ETA %.0f s\n",
-                       sys->mesh.unknowns(), lambda_nm, 10 * reported, s, s * (1.0 - f) / f);
-        };
-      }
+      const std::string lu_step = step_name("single-precision LU", sys->mesh, lambda_nm);
+      const auto progress = [&](double f) { report_step(lu_step, 100.0 * f, 100.0, "% of the flops"); };
+      report_step(lu_step, 0, 100.0, "% of the flops");
       sys->dense_single = std::make_unique<SinglePrecisionLU>(std::move(dense), 256, progress);
     } else {
+      report_step(step_name("sparse LU of the near field (preconditioner)", sys->mesh, lambda_nm), 0, 0);
       sys->near_field = std::make_unique<NearFieldLU>(sys->hmatrix->take_preconditioner_matrix());
     }
     sys->factor_seconds = seconds_since(t0);
@@ -139,10 +143,15 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
                 std::to_string(static_cast<long>(n * n * 16 / 1e9 + 0.5)) +
                 " GB); use method: hmatrix (compressed mat-vec) or simulate a narrower segment");
   }
+  check_memory(estimate_system_memory(sys->mesh, lambda_nm, options, rhs, far_directions),
+               memory_available(options.max_memory));
   auto t0 = std::chrono::steady_clock::now();
+  report_step(step_name("dense assembly", sys->mesh, lambda_nm), 0, 0);
   sys->Z = assemble_dense(sys->mesh, sys->media, sys->k0, sys->beta, options.quadrature);
   sys->assembly_seconds = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
+  report_step(step_name(options.method == BemOptions::Method::gmres ? "near-field LU" : "dense LU", sys->mesh, lambda_nm),
+              0, 0);
   if (options.method == BemOptions::Method::gmres) {
     sys->near_field = std::make_unique<NearFieldLU>(sys->mesh, sys->Z, kGmresNearFieldFactor);
   } else {
@@ -163,6 +172,7 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
     if (dense_single) dense_single->apply(in, out);
     else near_field->apply(in, out);
   };
+  const std::string gmres_step = step_name("GMRES", mesh, lambda_nm);
   Eigen::MatrixXcd AX(options.warm_start ? B.rows() : 0, options.warm_start ? B.cols() : 0);
   for (Eigen::Index c = 0; c < B.cols(); ++c) {
     // warm start: the combination of all earlier solutions that minimises the residual,
@@ -172,13 +182,12 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
       const Eigen::VectorXcd y = AX.leftCols(c).colPivHouseholderQr().solve(B.col(c));
       x = X.leftCols(c) * y;
     }
-    // Long solves say how far they are (at most every 30 s).
-    auto last = std::chrono::steady_clock::now();
+    // Long solves say how far they are (step progress, memory_budget.hpp: the CLI prints at most
+    // every 10 s, with the ETA from the right-hand sides done).
     const auto progress = [&](int it, double residual) {
-      if (seconds_since(last) < 30.0) return;
-      last = std::chrono::steady_clock::now();
-      std::fprintf(stderr, "bem: GMRES right-hand side %d of %d at %g nm: %d iterations, relative residual %.1e (goal %.0e)\n",
-                   static_cast<int>(c) + 1, static_cast<int>(B.cols()), lambda_nm, it, residual, options.gmres_tolerance);
+      report_step(gmres_step, static_cast<double>(c), static_cast<double>(B.cols()),
+                  format("right-hand side %d: %d iterations, relative residual %.1e (goal %.0e)", static_cast<int>(c) + 1,
+                         it, residual, options.gmres_tolerance));
     };
     const GmresResult r = gmres(A, M, B.col(c), x, options.gmres_tolerance, options.gmres_restart,
                                    options.gmres_max_iterations, progress);
@@ -199,6 +208,8 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
       AX.col(c) = ax;
     }
     X.col(c) = x;
+    report_step(gmres_step, static_cast<double>(c + 1), static_cast<double>(B.cols()),
+                format("right-hand side %d converged after %d iterations", static_cast<int>(c) + 1, r.iterations));
   }
   return X;
 }
@@ -259,11 +270,19 @@ std::shared_ptr<const ScatteringSolver::Prepared> BemSolver::prepare(
   return p;
 }
 
+MemoryEstimate BemSolver::estimate_memory(const CrossSection& section, double lambda_nm, std::size_t n_phi_i,
+                                          std::size_t n_phi_o) const {
+  const Geometry geometry = build_geometry(section);
+  const Mesh mesh = build_mesh(geometry, lambda_nm, options_.points_per_wavelength, options_.corner_split_deg);
+  return estimate_system_memory(mesh, lambda_nm, options_, 2 * static_cast<int>(n_phi_i), static_cast<int>(n_phi_o));
+}
+
 std::vector<FarField> BemSolver::solve(const Prepared& prepared, double lambda_nm, double theta,
                                        std::span<const double> phi_i, std::span<const double> phi_o) const {
   const auto* prep = dynamic_cast<const BemPrepared*>(&prepared);
   if (!prep) throw Error("bem: prepared data of another solver");
-  const auto sys = build_system(prep->geometry, lambda_nm, theta, options_);
+  const auto sys = build_system(prep->geometry, lambda_nm, theta, options_, 2 * static_cast<int>(phi_i.size()),
+                                static_cast<int>(phi_o.size()));
   const Mesh& mesh = sys->mesh;
   const int n = mesh.unknowns();
   const int nrhs = 2 * static_cast<int>(phi_i.size());

@@ -59,8 +59,11 @@ struct System {
   // iteration count per column (empty for LU).
   Eigen::MatrixXcd solve(const Eigen::MatrixXcd& B, const BemOptions& options, std::vector<int>* iterations = nullptr) const;
 };
+// Refuses (MemoryBudgetError) a system whose estimated peak with `rhs` right-hand sides and
+// `far_directions` far-field directions (memory_estimate.hpp) exceeds options.max_memory or the
+// process's budget, before anything is assembled.
 std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm, double theta,
-                                     const BemOptions& options);
+                                     const BemOptions& options, int rhs = 2, int far_directions = 0);
 
 // Raises bem.mesh_coarse / bem.near_touching (plumage/diagnostics.hpp) for a mesh at λ that the
 // measurements of NOTES.md "Warnings (issue 9)" say cannot be trusted; build_system calls it.
@@ -84,6 +87,8 @@ class BemSolver final : public ScatteringSolver {
   std::vector<FarField> solve(const Prepared& prepared, double lambda_nm, double theta_i_rad,
                               std::span<const double> phi_i_rad,
                               std::span<const double> phi_o_rad) const override;
+  MemoryEstimate estimate_memory(const CrossSection& section, double lambda_nm, std::size_t n_phi_i,
+                                 std::size_t n_phi_o) const override;
   const BemOptions& options() const { return options_; }
 
  private:

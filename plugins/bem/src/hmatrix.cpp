@@ -8,6 +8,7 @@
 
 #include "aca.hpp"
 #include "pair_integrals.hpp"
+#include "plumage/memory_budget.hpp"
 
 namespace plumage::bem {
 
@@ -68,7 +69,8 @@ double HMatrixStats::memory_gb() const {
 }
 
 HMatrix::HMatrix(const Mesh& mesh, const std::vector<Medium>& md, double k0, double beta,
-                 const QuadratureOptions& q, const HMatrixOptions& opt) {
+                 const QuadratureOptions& q, const HMatrixOptions& opt, std::string progress_step) {
+  progress_step_ = std::move(progress_step);
   n_ = mesh.unknowns();
   k0_ = k0, beta_ = beta;
   domains_.resize(mesh.a_count);
@@ -169,6 +171,9 @@ void HMatrix::build_near_field(const Mesh& mesh, const std::vector<Medium>& md, 
     ColSparse cp(n_, n_);
     cp.setFromTriplets(tp.begin(), tp.end());
     push(stack_p, std::move(cp));
+    if (!progress_step_.empty()) {
+      report_step(progress_step_, static_cast<double>(p1), static_cast<double>(pairs.size()), "near-field segment pairs");
+    }
   }
   for (auto& m : stack_n) near_ += m.first;
   for (auto& m : stack_p) pre_ += m.first;
@@ -197,15 +202,24 @@ void HMatrix::compress_blocks(const Mesh& mesh, const std::vector<Medium>& md, c
     for (const BlockPair& bp : parts[d].admissible) jobs.push_back({d, bp});
   }
   std::vector<LowRank> blocks(jobs.size());
-  tbb::parallel_for(std::size_t{0}, jobs.size(), [&](std::size_t k) {
-    const int d = jobs[k].dom;
-    const Cluster& r = trees[d].nodes[jobs[k].bp.row];
-    const Cluster& c = trees[d].nodes[jobs[k].bp.col];
-    LowRank& b = blocks[k];
-    b.r0 = r.begin, b.nr = r.size(), b.c0 = c.begin, b.nc = c.size();
-    compress_far_kernels(mesh, trees[d].order, md[d].gamma, q.far_points, r.begin, r.size(), c.begin, c.size(),
-                         opt.aca_tolerance, b.U, b.V);
-  });
+  // In batches, so that long assemblies say how far they are (each block is independent and
+  // deterministic: the batching changes no bit).
+  constexpr std::size_t kBatch = 2048;
+  for (std::size_t k0 = 0; k0 < jobs.size(); k0 += kBatch) {
+    tbb::parallel_for(k0, std::min(jobs.size(), k0 + kBatch), [&](std::size_t k) {
+      const int d = jobs[k].dom;
+      const Cluster& r = trees[d].nodes[jobs[k].bp.row];
+      const Cluster& c = trees[d].nodes[jobs[k].bp.col];
+      LowRank& b = blocks[k];
+      b.r0 = r.begin, b.nr = r.size(), b.c0 = c.begin, b.nc = c.size();
+      compress_far_kernels(mesh, trees[d].order, md[d].gamma, q.far_points, r.begin, r.size(), c.begin, c.size(),
+                           opt.aca_tolerance, b.U, b.V);
+    });
+    if (!progress_step_.empty()) {
+      report_step(progress_step_ + " ACA", static_cast<double>(std::min(jobs.size(), k0 + kBatch)),
+                  static_cast<double>(jobs.size()), "admissible blocks compressed");
+    }
+  }
   long rank_sum = 0, lowrank = 0;
   for (std::size_t k = 0; k < blocks.size(); ++k) {
     LowRank& b = blocks[k];

@@ -14,6 +14,7 @@
 
 #include <Eigen/Dense>
 #include <Eigen/Sparse>
+#include <string>
 #include <vector>
 
 #include "assembly.hpp"
@@ -51,8 +52,10 @@ struct HMatrixStats {
 
 class HMatrix {
  public:
+  // `progress_step`: the step name under which the assembly reports its progress (near-field pairs
+  // integrated, ACA blocks compressed; plumage/memory_budget.hpp report_step), "" for none.
   HMatrix(const Mesh& mesh, const std::vector<Medium>& media, double k0, double beta, const QuadratureOptions& q,
-          const HMatrixOptions& options);
+          const HMatrixOptions& options, std::string progress_step = {});
   int size() const { return n_; }
   // y = Z x
   void apply(const Eigen::VectorXcd& x, Eigen::VectorXcd& y) const;
@@ -78,6 +81,7 @@ class HMatrix {
     std::vector<LowRank> blocks;
   };
   double k0_ = 0, beta_ = 0;
+  std::string progress_step_;
   void build_near_field(const Mesh& mesh, const std::vector<Medium>& media, const QuadratureOptions& q,
                         const HMatrixOptions& options, const std::vector<ClusterTree>& trees,
                         const std::vector<BlockPartition>& parts);

@@ -13,7 +13,9 @@ class FdtdTableBuilder final : public TableBuilder {
  public:
   explicit FdtdTableBuilder(BuilderParams params) : params_(std::move(params)) {}
 
+  // Refuses (MemoryBudgetError, exit status 2) a cell whose grid would not fit, before any run.
   ReflectionTable build(const CrystalCell& cell, const TableGrid& grid, Progress progress) const override;
+  MemoryEstimate estimate_memory(const CrystalCell& cell, const TableGrid& grid) const override;
   // The cell's `fdtd_periodic:` section (crystal_numerics).
   void check_cell(const CrystalCell& cell) const override { crystal_numerics(cell); }
 

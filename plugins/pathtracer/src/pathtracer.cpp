@@ -15,12 +15,47 @@
 #include "embree_scene.hpp"
 #include "integrator.hpp"
 #include "plumage/error.hpp"
+#include "plumage/params.hpp"
 #include "spectral_tables.hpp"
 
 namespace plumage::pathtracer {
 
+namespace {
+
+// Embree builds its bounds in single precision and aborts the process (not an error code) on
+// non-finite or enormous ones, so every point handed to it is checked first against the scene's
+// declared coordinate range (params.hpp, Limits::scene_coordinate_mm): bad input, exit 2, the
+// field named. Scene configs are refused there already; this guards scenes built in code.
+void check_bounds(const Scene& scene) {
+  const Limits limits = Limits::scene_coordinate_mm();
+  auto check = [&](const Vec3f& p, const std::string& field) {
+    if (limits.admits(p.x) && limits.admits(p.y) && limits.admits(p.z)) return;
+    throw ConfigError({"scene '" + scene.name + "'", 0, 0}, field,
+                      "point [" + std::to_string(p.x) + ", " + std::to_string(p.y) + ", " + std::to_string(p.z) +
+                          "] is not a scene coordinate: each must be finite and " + limits.describe() + " mm");
+  };
+  check(scene.camera.position_mm, "camera.position_mm");
+  check(scene.camera.look_at_mm, "camera.look_at_mm");
+  for (const SceneMesh& mesh : scene.meshes) {
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+      check(mesh.positions[i], "mesh '" + mesh.name + "' vertex " + std::to_string(i));
+  }
+  for (std::size_t l = 0; l < scene.point_lights.size(); ++l)
+    check(scene.point_lights[l].position_mm, "point light " + std::to_string(l) + " position_mm");
+  for (std::size_t l = 0; l < scene.area_lights.size(); ++l) {
+    const AreaLight& a = scene.area_lights[l];
+    const Vec3f far = {a.corner_mm.x + a.edge_u_mm.x + a.edge_v_mm.x, a.corner_mm.y + a.edge_u_mm.y + a.edge_v_mm.y,
+                       a.corner_mm.z + a.edge_u_mm.z + a.edge_v_mm.z};
+    check(a.corner_mm, "area light " + std::to_string(l) + " corner_mm");
+    check(far, "area light " + std::to_string(l) + " corner_mm + edge_u_mm + edge_v_mm");
+  }
+}
+
+}  // namespace
+
 void validate_scene(const Scene& scene, const Settings& s) {
   auto fail = [&](const std::string& what) { throw Error("pathtracer: scene '" + scene.name + "': " + what); };
+  check_bounds(scene);
   if (scene.camera.width <= 0 || scene.camera.height <= 0) fail("camera width/height must be positive");
   if (!(scene.camera.vertical_fov_rad > 0.0 && scene.camera.vertical_fov_rad < kPi)) fail("camera vertical_fov_rad must be in (0, pi)");
   if (s.samples_per_pixel < 1) fail("samples_per_pixel must be >= 1");

@@ -78,11 +78,11 @@ std::vector<double> parse_wavelengths(const ParamView& root) {
   std::vector<double> out;
   const ParamView node = root.node("wavelengths_nm");
   if (node.is_sequence()) {
-    out = root.numbers("wavelengths_nm", Limits::positive());
+    out = root.numbers("wavelengths_nm", Limits::wavelength_nm());
   } else if (node.is_map()) {
     const ParamView m = root.child("wavelengths_nm");
-    const double from = m.number("from", Limits::positive());
-    const double to = m.number("to", Limits::positive());
+    const double from = m.number("from", Limits::wavelength_nm());
+    const double to = m.number("to", Limits::wavelength_nm());
     const double step = m.number("step", Limits::positive());
     if (to < from) m.fail("to", "must be >= from");
     for (int k = 0; from + k * step <= to + 1e-9 * step; ++k) out.push_back(from + k * step);

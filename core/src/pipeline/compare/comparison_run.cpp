@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "plumage/comparison.hpp"
+#include "plumage/memory_budget.hpp"
 
 namespace plumage {
 
@@ -144,6 +145,21 @@ std::size_t comparison_solve_count(const Comparison& c) {
   return c.methods.size() * c.lambdas.size() * incidents_by_theta(c).size();
 }
 
+void check_comparison_memory(const Comparison& c, const ComparisonSegment& segment) {
+  const auto by_theta = incidents_by_theta(c);
+  std::size_t azimuths = 0;
+  for (const auto& [theta, members] : by_theta) azimuths = std::max(azimuths, members.size());
+  for (const ComparisonMethod& m : c.methods) {
+    const CrossSection& cs = m.geometry == ComparisonMethod::Geometry::exact ? segment.exact : *segment.reduced;
+    for (double lambda : c.lambdas) {
+      MemoryEstimate e = m.solver->estimate_memory(cs, lambda, azimuths, c.pattern_samples);
+      if (e.parts.empty()) continue;
+      e.job = "compare method '" + m.name + "': " + e.job;
+      check_memory(e);
+    }
+  }
+}
+
 std::vector<MethodRun> run_comparison(const Comparison& c, const ComparisonSegment& segment,
                                       const ComparisonProgress& progress) {
   const DirectionSet directions = pattern_directions(c.pattern_samples);
@@ -151,6 +167,7 @@ std::vector<MethodRun> run_comparison(const Comparison& c, const ComparisonSegme
   const std::size_t solves_per_method = c.lambdas.size() * by_theta.size();
   const std::size_t total = c.methods.size() * solves_per_method;
 
+  check_comparison_memory(c, segment);
   std::vector<MethodRun> runs(c.methods.size());
   std::size_t done = 0;
   using clock = std::chrono::steady_clock;
@@ -161,6 +178,8 @@ std::vector<MethodRun> run_comparison(const Comparison& c, const ComparisonSegme
     r.regions = cs.regions.size();
     r.results.assign(c.incidents.size(), std::vector<FarField>(c.lambdas.size()));
     r.solve_s_per_lambda.assign(c.lambdas.size(), 0.0);
+    report_step("compare: method '" + m.name + "'", static_cast<double>(mi), static_cast<double>(c.methods.size()),
+                std::to_string(c.lambdas.size()) + " wavelengths, " + std::to_string(cs.regions.size()) + " regions");
     const auto t0 = clock::now();
     const auto prepared = m.solver->prepare(cs, m.reflection);
     r.prepare_s = std::chrono::duration<double>(clock::now() - t0).count();

@@ -17,12 +17,24 @@ CheckedInstance generate_checked(const StructureGenerator& generator, std::uint6
   return out;
 }
 
-void write_cross_section_files(const CrossSection& section, const std::filesystem::path& base,
-                               const CrossSectionPictures& pictures) {
-  write_file_atomically(base.string() + ".xsec", [&](std::ostream& s) { write_cross_section_text(s, section); });
+namespace {
+SvgOptions svg_options(const CrossSectionPictures& pictures) {
   SvgOptions options;
   options.pixels_per_um = pictures.pixels_per_um;
   if (pictures.window_um > 0) options.window_nm = std::make_pair(-500.0 * pictures.window_um, 500.0 * pictures.window_um);
+  return options;
+}
+}  // namespace
+
+void check_cross_section_pictures(const CrossSection& section, const CrossSectionPictures& pictures) {
+  if (pictures.png) check_memory(estimate_picture_memory(section, svg_options(pictures)));
+}
+
+void write_cross_section_files(const CrossSection& section, const std::filesystem::path& base,
+                               const CrossSectionPictures& pictures) {
+  check_cross_section_pictures(section, pictures);
+  write_file_atomically(base.string() + ".xsec", [&](std::ostream& s) { write_cross_section_text(s, section); });
+  const SvgOptions options = svg_options(pictures);
   if (pictures.svg) {
     write_file_atomically(base.string() + ".svg", [&](std::ostream& s) { write_cross_section_svg(s, section, options); });
   }

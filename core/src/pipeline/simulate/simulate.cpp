@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "plumage/param_table.hpp"
 #include "plumage/conventions.hpp"
 #include "plumage/cross_section.hpp"
 #include "plumage/diagnostics.hpp"
@@ -34,8 +35,11 @@ void check_request(const SpeciesConfig& config, const SimulationRequest& request
   for (double p : request.phi_deg) {
     if (std::abs(p) >= 90) refuse("--phi-deg", "azimuths must be in (-90, 90)");
   }
+  if (request.instances < 0) refuse("--instances", "must be at least 1 (0: the config's)");
+  const Limits wavelengths = Limits::wavelength_nm();
   for (double l : lambdas) {
-    if (!(l > 0)) refuse("--lambda-nm", "wavelengths must be positive");
+    if (!wavelengths.admits(l))
+      refuse("--lambda-nm", "wavelength " + format_param_number(l) + " nm is out of range: must be " + wavelengths.describe());
   }
   if (request.directions == SimulationRequest::Directions::full_circle && config.solver_type == "approximate") {
     refuse(config.file.string(),
@@ -90,7 +94,7 @@ std::map<std::string, std::string> set_metadata(const SpeciesConfig& config, int
 
 FarFieldSet simulate(const SpeciesConfig& config, const SimulationRequest& request,
                      const SimulationCallbacks& callbacks) {
-  if (!config.structure) refuse(config.file.string(), "no `structure:` section to simulate");
+  required_structure(config);
   const SimulationSettings& sim = config.simulation;
   const std::vector<double>& lambdas = request.lambdas_nm.empty() ? sim.wavelengths_nm : request.lambdas_nm;
   check_request(config, request, lambdas);
