@@ -82,6 +82,14 @@ void print_written(const RenderedView& v) {
             << (pixels ? s.camera_paths / pixels : 0) << " spp, " << std::fixed << std::setprecision(1) << s.seconds
             << " s render, " << v.cpu_s << " s CPU, " << std::setprecision(2) << s.rays / std::max(1e-9, s.seconds) / 1e6
             << " Mrays/s, mean-BRDF share " << std::setprecision(3) << s.mean_lod_fraction << ")\n";
+  // Whether the paths reach where a material's characterisation raised a per-direction warning.
+  for (const WarningShare& w : v.warning_shares) {
+    std::cout << "  material '" << w.material << "': " << std::setprecision(2) << 100.0 * w.share()
+              << " % of its throughput-weighted feather BSDF evaluations (" << w.evaluations_in << " of " << w.evaluations
+              << ") reach where " << w.code << " was raised (" << w.directions << "): "
+              << (w.evaluations > 0 && w.share() >= v.warning_share_threshold ? "at or above" : "below")
+              << " render.warning_share = " << 100.0 * v.warning_share_threshold << " %\n";
+  }
 }
 
 void run(AppContext& context, const Options& o) {

@@ -82,6 +82,18 @@ Diagnostics& diagnostics() {
 
 void warn(std::string_view code, std::string message) { diagnostics().warn(code, std::move(message)); }
 
+namespace {
+thread_local WarningSites* innermost_sites = nullptr;
+}  // namespace
+
+WarningSites::WarningSites() : outer_(innermost_sites) { innermost_sites = this; }
+WarningSites::~WarningSites() { innermost_sites = outer_; }
+
+void warn_at(std::string_view code, std::string message, WarningSite::Item kind, std::size_t item, double value) {
+  if (innermost_sites) innermost_sites->add({std::string(code), kind, item, value});
+  diagnostics().warn(code, std::move(message));
+}
+
 CapturedWarnings::CapturedWarnings() : echo_(std::make_unique<std::ostringstream>()) {
   diagnostics().clear();
   diagnostics().set_echo(echo_.get());

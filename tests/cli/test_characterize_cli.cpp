@@ -64,9 +64,13 @@ TEST_CASE("characterize: shards merged are bit-identical to a single run", "[cha
   REQUIRE(merged.status == 0);
   CHECK(bytes(dir / "merged.plm") == bytes(dir / "single.plm"));
   // The grid's grazing cells are beyond the approximate solver's validated range (issue 9): the
-  // warning was printed and is in the material (.plm `warnings`), the same in the merged file.
+  // warning was printed and is in the material (.plm `warnings`), the same in the merged file,
+  // with where and how much (issue 23): the share of the 2 x 3 x 3 units, the directions, the
+  // cells a render checks its paths against.
   CHECK(single.output.find("[approx.grazing]") != std::string::npos);
-  CHECK(bytes(dir / "single.plm").find("approx.grazing: raised while computing") != std::string::npos);
+  CHECK(single.output.find(" of 18 work units (") != std::string::npos);
+  CHECK(bytes(dir / "single.plm").find("approx.grazing: raised in ") != std::string::npos);
+  CHECK(bytes(dir / "single.plm").find("approx.grazing cells: ") != std::string::npos);
 
   // A missing shard: bad input (exit 2, issue 23), the count of missing groups, nothing written.
   const Result partial = run("merge " + (dir / "part1.shard").string() + " --out " + (dir / "partial.plm").string());

@@ -78,6 +78,9 @@ struct CharacterizeResult {
   bool shard_written = false;   // `out` is a shard file
   std::size_t shard_groups = 0; // records in it
   std::string fit_summary;      // material runs, rank 0
+  // Material runs, rank 0: the material's warnings, one "<code>: <where and how much>" line per
+  // code (material_warning_summaries, plumage/material_warnings.hpp); "" if none.
+  std::string warnings;
   double wall_s = 0, cpu_s = 0; // of this process's computation
 };
 

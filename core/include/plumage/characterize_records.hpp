@@ -30,6 +30,17 @@ struct GroupRecord {
   // material merged from shards, MPI ranks or a resumed journal carries exactly the warnings of
   // a single run, independent of thread scheduling.
   std::vector<std::string> warnings;
+  // Codes raised per incident direction (WarningSite::Item::azimuth, plumage/diagnostics.hpp,
+  // e.g. approx.grazing): the units b that raised them, in how many of the instances, and the
+  // worst measure of a raise (the horizon spill ratio for approx.grazing). Sorted by (code, b).
+  // Records written before issue 23 have none (the material then says only how many groups).
+  struct UnitWarning {
+    std::string code;
+    std::uint32_t b = 0;          // 1 … G
+    std::uint32_t instances = 0;  // of the run's instances
+    double worst = 0.0;           // may be +inf
+  };
+  std::vector<UnitWarning> unit_warnings;
 };
 
 // One record as bytes: u32 'PLMR', u64 body length, body, u64 FNV-1a of the body.

@@ -62,6 +62,36 @@ Diagnostics& diagnostics();
 // Shorthand for diagnostics().warn(code, message).
 void warn(std::string_view code, std::string message);
 
+// Where a warning was raised (issue 23: a warning says where and how much). warn_at() raises
+// like warn() and also tells the innermost WarningSites alive on the calling thread which item
+// (e.g. the index of an incident azimuth in one solve) raised it and a measure of how far
+// beyond the limit it was. A caller that knows what the items are (the work group knows its
+// units, simulate its instances) opens a WarningSites around the call; without one, warn_at()
+// is warn(). Scopes nest (a thread that steals another task while waiting inside one gets its
+// own scope and then restores the outer one), so a site always lands in the scope of the task
+// that raised it, whatever the scheduling.
+struct WarningSite {
+  enum class Item { azimuth, instance };  // what `item` indexes
+  std::string code;
+  Item kind = Item::instance;
+  std::size_t item = 0;
+  double value = 0.0;  // the raise's measure (e.g. the horizon spill ratio); may be +inf
+};
+class WarningSites {
+ public:
+  WarningSites();
+  ~WarningSites();
+  WarningSites(const WarningSites&) = delete;
+  WarningSites& operator=(const WarningSites&) = delete;
+  const std::vector<WarningSite>& sites() const { return sites_; }
+  void add(WarningSite site) { sites_.push_back(std::move(site)); }
+
+ private:
+  std::vector<WarningSite> sites_;
+  WarningSites* outer_ = nullptr;
+};
+void warn_at(std::string_view code, std::string message, WarningSite::Item kind, std::size_t item, double value);
+
 // For tests and tools: for its lifetime the process's diagnostics start empty and their echo goes
 // into echoed() instead of stderr; on destruction (also when a test check throws) the echo returns
 // to std::cerr and the warnings are cleared.

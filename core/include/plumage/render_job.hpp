@@ -52,6 +52,11 @@ struct RenderedView {
   int width = 0, height = 0;
   RenderStats stats;
   double cpu_s = 0.0;  // process CPU time of the render
+  // Per feather material and per-direction warning code: how much of the paths reached where it
+  // was raised (renderer.hpp); those at or above the scene's render.warning_share were raised as
+  // material.warnings before the EXR was written (its plumage:warnings attribute).
+  std::vector<WarningShare> warning_shares;
+  double warning_share_threshold = 0.01;
 };
 
 // The image buffers of one view (memory_budget.hpp); RenderJob refuses views that would not fit

@@ -13,6 +13,7 @@
 
 #include "plumage/exr.hpp"
 #include "plumage/image.hpp"
+#include "plumage/material_warnings.hpp"
 #include "plumage/plugin.hpp"
 #include "plumage/scene.hpp"
 
@@ -33,6 +34,11 @@ struct RenderResult {
   // the renderer was not asked for spectral channels.
   SpectralChannels spectral;
   RenderStats stats;
+  // Per feather material and warning code that says where it was raised (the material's cells,
+  // plumage/material_warnings.hpp): the throughput-weighted share of its BSDF evaluations that
+  // reach those directions; render_job warns when a share is above render.warning_share. Only
+  // observed: the image does not depend on it. Deterministic like the image.
+  std::vector<WarningShare> warning_shares;
 };
 
 class Renderer : public PluginObject {

@@ -9,7 +9,7 @@
 //   scene: starling                      # name of the outputs (default: the file's stem)
 //   renderer: pathtracer                 # or {type: pathtracer, spp: 16, seed: 1, lod: auto, ...}:
 //                                        # a kind "renderer" plug-in and its own settings
-//   render: {resolution: [512, 512], max_triangles: 4000000, exposure: 1}
+//   render: {resolution: [512, 512], max_triangles: 4000000, exposure: 1, warning_share: 0.01}
 //   camera: {position_mm: [x, y, z], look_at_mm: [x, y, z], up: [0, 0, 1], fov_deg: 30}
 //   lights:
 //     - {type: distant, toward_light: [x, y, z], irradiance: 1}
@@ -91,6 +91,10 @@ struct SceneConfig {
   std::vector<SceneView> views;  // ≥ 1: the top-level camera and lights when no `views:`
   std::size_t max_triangles = 4'000'000;
   double exposure = 1.0;  // render.exposure: scale of the PNG preview only (the EXR is radiance)
+  // render.warning_share: the share of a feather material's throughput-weighted BSDF evaluations
+  // in the directions where a warning code was raised above which the render raises it
+  // (material_warnings.hpp, render_job.cpp).
+  double warning_share = 0.01;
 };
 
 // Reads and validates a scene file (ConfigError on any problem).

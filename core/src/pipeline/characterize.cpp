@@ -12,6 +12,7 @@
 #include "mpi_distribution.hpp"
 #include "plumage/atomic_file.hpp"
 #include "plumage/diagnostics.hpp"
+#include "plumage/material_warnings.hpp"
 #include "records.hpp"
 #include "warning_attribution.hpp"
 #include "work_groups.hpp"
@@ -74,8 +75,10 @@ void write_material(const CharacterizeSettings& s, const fs::path& out, const st
   for (std::size_t rank = 0; rank < parts.size(); ++rank) {
     for (auto& r : parse_records(parts[rank], "records of rank " + std::to_string(rank))) records.push_back(std::move(r));
   }
-  write_feather_material(out, assemble_material(s, records));
+  const FeatherMaterial material = assemble_material(s, records);
+  write_feather_material(out, material);
   result.fit_summary = fit_quality_summary(s, records);
+  result.warnings = material_warning_summaries(material.warnings);
   if (!o.diagnostics_dir.empty()) write_fit_diagnostics(o.diagnostics_dir, s, diagnostics, result.fit_summary);
 }
 

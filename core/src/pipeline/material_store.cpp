@@ -12,6 +12,7 @@
 
 #include "plumage/characterize.hpp"
 #include "plumage/diagnostics.hpp"
+#include "plumage/material_warnings.hpp"
 #include "plumage/species_config.hpp"
 
 namespace plumage {
@@ -67,11 +68,14 @@ std::string key_difference(const std::string& wanted, const std::string& stale) 
 
 std::shared_ptr<const FeatherMaterial> load_material(const fs::path& file) {
   auto material = std::make_shared<const FeatherMaterial>(read_feather_material(file));
-  // A material characterised with warnings passes them on to what is made with it.
-  if (!material->warnings.empty()) {
-    std::string first = material->warnings.substr(0, material->warnings.find('\n'));
-    warn("material.warnings", file.string() + " was characterised with warnings (first: " + first + ")");
+  // A material characterised with warnings passes them on to what is made with it; a code that
+  // says where it was raised (its cells, plumage/material_warnings.hpp) is passed on by the
+  // render only when the scene's paths reach those directions (render_job.cpp), the others here.
+  std::string first;
+  for (const MaterialWarning& w : parse_material_warnings(material->warnings, material->grid)) {
+    if (!w.directional() && first.empty()) first = w.code + ": " + w.summary;
   }
+  if (!first.empty()) warn("material.warnings", file.string() + " was characterised with warnings (first: " + first + ")");
   return material;
 }
 

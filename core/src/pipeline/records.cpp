@@ -48,6 +48,19 @@ bool parse_body(std::string_view data, std::size_t p, std::size_t end, GroupReco
       p += len;
     }
   }
+  // Optional (issue 23; absent in older records): the per-unit sites of per-direction codes.
+  std::uint32_t nsites = 0;
+  if (ok && p < end) ok = get(data, p, end, nsites) && nsites <= 1000000;
+  for (std::uint32_t k = 0; ok && k < nsites; ++k) {
+    GroupRecord::UnitWarning u;
+    std::uint32_t len = 0;
+    ok = get(data, p, end, len) && len <= end - p;
+    if (!ok) break;
+    u.code.assign(data.substr(p, len));
+    p += len;
+    ok = get(data, p, end, u.b) && get(data, p, end, u.instances) && get(data, p, end, u.worst);
+    if (ok) r.unit_warnings.push_back(std::move(u));
+  }
   return ok && p == end;
 }
 
@@ -70,6 +83,17 @@ std::string serialize(const GroupRecord& r) {
   for (const std::string& code : r.warnings) {
     put<std::uint32_t>(body, static_cast<std::uint32_t>(code.size()));
     body += code;
+  }
+  // Written only when there are any, so a record without them has the pre-issue-23 bytes.
+  if (!r.unit_warnings.empty()) {
+    put<std::uint32_t>(body, static_cast<std::uint32_t>(r.unit_warnings.size()));
+    for (const GroupRecord::UnitWarning& u : r.unit_warnings) {
+      put<std::uint32_t>(body, static_cast<std::uint32_t>(u.code.size()));
+      body += u.code;
+      put<std::uint32_t>(body, u.b);
+      put<std::uint32_t>(body, u.instances);
+      put<double>(body, u.worst);
+    }
   }
   std::string out;
   put<std::uint32_t>(out, kRecordMagic);

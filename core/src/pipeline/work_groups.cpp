@@ -4,10 +4,14 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 
 #include "journal.hpp"
 #include "plumage/conventions.hpp"
+#include "plumage/diagnostics.hpp"
 #include "plumage/far_field.hpp"
 #include "plumage/fitter.hpp"
 #include "warning_attribution.hpp"
@@ -50,6 +54,27 @@ std::vector<UnitFit> fit_group(const CharacterizeSettings& s, const GroupRecord&
   return fits;
 }
 
+// Per (code, unit b): how many instances raised it and the worst measure, from every
+// instance's sites (the same whatever thread solved which instance).
+std::vector<GroupRecord::UnitWarning> unit_warnings(const std::vector<std::vector<WarningSite>>& sites,
+                                                    std::size_t units) {
+  std::map<std::pair<std::string, std::uint32_t>, GroupRecord::UnitWarning> by_unit;
+  for (const std::vector<WarningSite>& instance : sites) {
+    std::set<std::pair<std::string, std::uint32_t>> seen;  // an instance counts once per unit
+    for (const WarningSite& site : instance) {
+      if (site.kind != WarningSite::Item::azimuth || site.item >= units) continue;
+      const auto key = std::make_pair(site.code, static_cast<std::uint32_t>(site.item + 1));
+      GroupRecord::UnitWarning& u = by_unit[key];
+      u.code = key.first, u.b = key.second;
+      if (seen.insert(key).second) ++u.instances;
+      u.worst = std::max(u.worst, site.value);
+    }
+  }
+  std::vector<GroupRecord::UnitWarning> out;
+  for (auto& [key, u] : by_unit) out.push_back(std::move(u));
+  return out;
+}
+
 }  // namespace
 
 GroupRecord run_group(const SpeciesConfig& config, const CharacterizeSettings& s, const PreparedInstances& prepared,
@@ -68,13 +93,18 @@ GroupRecord run_group(const SpeciesConfig& config, const CharacterizeSettings& s
 
   // per_b[b][n]: far field of instance n at azimuth b.
   std::vector<std::vector<FarField>> per_b(phi_i.size(), std::vector<FarField>(static_cast<std::size_t>(s.instances)));
+  // sites[n]: where instance n's solve raised per-azimuth warnings (diagnostics.hpp, warn_at).
+  std::vector<std::vector<WarningSite>> sites(static_cast<std::size_t>(s.instances));
   tbb::parallel_for(0, s.instances, [&](int n) {
     std::vector<double> phis = phi_i;
     const double d = azimuth_jitter_rad(n, s.instances, s.jitter_deg);
     for (double& p : phis) p += d;
+    const WarningSites scope;
     auto fields = config.solver->solve(*prepared[n], lambda, theta, phis, phi_o);
     for (std::size_t b = 0; b < fields.size(); ++b) per_b[b][n] = std::move(fields[b]);
+    sites[static_cast<std::size_t>(n)] = scope.sites();
   });
+  rec.unit_warnings = unit_warnings(sites, phi_i.size());
   const std::vector<UnitFit> fits = fit_group(s, rec, lambda, theta, phi_i, pattern.phi_o_rad.size(), per_b);
   rec.units.resize(phi_i.size());
   for (std::size_t b = 0; b < fits.size(); ++b) {

@@ -8,10 +8,12 @@
 #include <tbb/global_control.h>
 
 #include <chrono>
+#include <cstdio>
 #include <ctime>
 #include <optional>
 
 #include "plumage/config_document.hpp"
+#include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 
 namespace plumage {
@@ -63,6 +65,22 @@ class ThreadCap {
  private:
   std::optional<tbb::global_control> cap_;
 };
+
+// A material's per-direction warning matters to this image only if its paths reach those
+// directions with weight (issue 23): raised at or above the threshold, with the number.
+void warn_reached_directions(const RenderedView& view) {
+  for (const WarningShare& w : view.warning_shares) {
+    if (w.evaluations == 0 || w.share() < view.warning_share_threshold) continue;
+    char share[96];
+    std::snprintf(share, sizeof share, "%.1f %% (threshold render.warning_share = %.1f %%)", 100.0 * w.share(),
+                  100.0 * view.warning_share_threshold);
+    warn("material.warnings", view.name + ": material '" + w.material + "': " + share +
+                                  " of its throughput-weighted feather BSDF evaluations (" +
+                                  std::to_string(w.evaluations_in) + " of " + std::to_string(w.evaluations) +
+                                  ") have their incident direction where its characterisation raised " + w.code +
+                                  " (" + w.directions + ")");
+  }
+}
 
 }  // namespace
 
@@ -158,6 +176,9 @@ RenderedView RenderJob::render_view(std::size_t k, const fs::path& out_dir, cons
   out.png = out_dir / (scene.name + ".png");
   out.width = scene.camera.width, out.height = scene.camera.height;
   out.stats = result.stats;
+  out.warning_shares = result.warning_shares;
+  out.warning_share_threshold = s.config.warning_share;
+  warn_reached_directions(out);
   create_output_directory(out_dir);
   write_render_images(result, s.config.exposure, out.exr, out.png);
   return out;

@@ -22,6 +22,7 @@ struct RenderKeys {
   int width = 0, height = 0;  // 0: the camera's default (512)
   std::size_t max_triangles = 4'000'000;
   double exposure = 1.0;
+  double warning_share = 0.01;
 };
 
 const ParamTable<RenderKeys>& render_table() {
@@ -38,7 +39,12 @@ const ParamTable<RenderKeys>& render_table() {
           .integer("max_triangles", &RenderKeys::max_triangles, "1", 4'000'000, Limits::closed(1, 1e8),
                    "budget of the scene's geometry, checked before barbules are built")
           .number("exposure", &RenderKeys::exposure, "1", 1.0, Limits::positive(),
-                  "scale of the PNG preview only (the EXR holds radiance)");
+                  "scale of the PNG preview only (the EXR holds radiance)")
+          .number("warning_share", &RenderKeys::warning_share, "1", 0.01, Limits::closed(0, 1),
+                  "a feather material's warning raised per direction in its characterisation (e.g. approx.grazing) "
+                  "is passed on by the render only when at least this share of the material's feather BSDF "
+                  "evaluations, weighted by path throughput times f*cos, has its incident direction where the code "
+                  "was raised (1 %: a lobe that small is below the preview's noise); 0: always, 1: only if all");
   return table;
 }
 
@@ -48,7 +54,7 @@ void refuse_renderer_keys(const ParamView& r) {
   const std::vector<std::string> names = render_table().names();
   for (const std::string& key : r.keys()) {
     if (std::find(names.begin(), names.end(), key) != names.end() || nearest_name(key, names)) continue;
-    r.fail(key, "not a key of render: (resolution, max_triangles, exposure); the renderer's own settings (spp, seed, "
+    r.fail(key, "not a key of render: (resolution, max_triangles, exposure, warning_share); the renderer's own settings (spp, seed, "
                 "lod, ...) go in its section, e.g. renderer: {type: pathtracer, " + key + ": ...}");
   }
 }
@@ -127,6 +133,7 @@ SceneConfig parse_scene_config(const ConfigDocument& doc) {
   }
   c.max_triangles = render.max_triangles;
   c.exposure = render.exposure;
+  c.warning_share = render.warning_share;
 
   // Top-level camera and lights: the defaults of every view.
   SceneView base;

@@ -41,6 +41,8 @@ struct PreparedTop final : ScatteringSolver::Prepared {
   // Slope and curvature of the top under the window: the validity checks of surface_validity.hpp
   // (warnings approx.rough_surface, approx.high_curvature, approx.grazing).
   detail::TopSurfaceStatistics surface;
+  std::string instance;        // detail::instance_name: who the per-geometry warnings name
+  std::size_t instance_index = 0;
 };
 
 // Jones matrices for every incident azimuth at every node ([a·nodes + m]) or, when the
@@ -231,7 +233,9 @@ std::shared_ptr<const ScatteringSolver::Prepared> ApproximateSolver::prepare(
   }
   // Beyond the roughness checked against the full-wave BEM: say so (issue 9), never silently.
   p->surface = detail::top_surface_statistics(p->vertices, p->normals, p->window, p->node_length, s);
-  detail::warn_if_rough(p->surface);
+  p->instance = detail::instance_name(section);
+  p->instance_index = static_cast<std::size_t>(section.instance);
+  detail::warn_if_rough(p->surface, p->instance, p->instance_index);
   if (section.layered) {
     auto all = layer_profiles(section);
     p->profiles.assign(all.begin() + 1, all.end() - 1);
@@ -271,8 +275,9 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
   const double gamma0 = k0 * ct;  // transverse wavenumber in air
 
   // 0. Curvature and grazing beyond the range checked against the full-wave BEM: warnings.
-  detail::warn_if_curved(top.surface, lambda_nm);
-  for (double phi : phi_i_rad) detail::warn_if_grazing(top.surface, lambda_nm, theta_i_rad, phi);
+  detail::warn_if_curved(top.surface, lambda_nm, top.instance, top.instance_index);
+  for (std::size_t a = 0; a < phi_i_rad.size(); ++a)
+    detail::warn_if_grazing(top.surface, lambda_nm, theta_i_rad, phi_i_rad[a], a);
 
   // 1. Local reflection under every node, for every incident azimuth, in one batch.
   const std::vector<JonesReflection> jones = local_reflection(top, lambda_nm, theta_i_rad, phi_i_rad);

@@ -87,43 +87,60 @@ double horizon_spill(const TopSurfaceStatistics& stats, double lambda_nm, double
   return 2.0 / spread / room;
 }
 
-// The messages carry the limits, not the values of the raise: a code is kept with its first
-// message, and which instance or direction raises first depends on thread scheduling and on how a
-// run is sharded — a fixed message per code keeps the files that carry the warnings reproducible
-// (counts add up across shards). The values are in the study's CSV and in the statistics above.
+// The messages carry the limits and name the instance (a geometry has one instance and seed,
+// whatever the scheduling), not the values of the raise: a code is kept with its smallest
+// message, and a fixed message per code and instance keeps the files that carry the warnings
+// reproducible (counts add up across shards). The values go to the caller's WarningSites
+// (warn_at), which turns them into "where and how much" (the material's warnings, simulate's list
+// of instances); they are also in the study's CSV and in the statistics above.
 double max_rough_slope(double curvature_spread_rad) {
   const double t = std::min(curvature_spread_rad / kCurvedSpreadRad, 1.0);
   return kMaxRoughSlopeRad + t * (kMaxRoughSlopeCurvedRad - kMaxRoughSlopeRad);
 }
 
-void warn_if_rough(const TopSurfaceStatistics& stats) {
+std::string instance_name(const CrossSection& section) {
+  char seed[32];
+  std::snprintf(seed, sizeof seed, "0x%016llx", static_cast<unsigned long long>(section.seed));
+  return "instance " + std::to_string(section.instance) + " (seed " + seed + ")" +
+         (section.label.empty() ? std::string() : " of " + section.label);
+}
+
+void warn_if_rough(const TopSurfaceStatistics& stats, const std::string& instance, std::size_t index) {
   if (stats.rough_slope_rad > max_rough_slope(stats.curvature_spread_rad)) {
-    warn("approx.rough_surface",
-         format("approximate solver: top-surface rms slope under the window above %.2f rad (%.2f on a top curved by "
-                "%.1f rad across the window), beyond the roughness checked against the full-wave BEM (pattern error "
-                "above %.0f %% there)",
-                kMaxRoughSlopeRad, kMaxRoughSlopeCurvedRad, kCurvedSpreadRad, 15.0));
+    warn_at("approx.rough_surface",
+            "approximate solver: " + instance + ": " +
+                format("top-surface rms slope under the window above %.2f rad (%.2f on a top curved by %.1f rad "
+                       "across the window), beyond the roughness checked against the full-wave BEM (pattern error "
+                       "above %.0f %% there)",
+                       kMaxRoughSlopeRad, kMaxRoughSlopeCurvedRad, kCurvedSpreadRad, 15.0),
+            WarningSite::Item::instance, index, stats.rough_slope_rad);
   }
 }
 
-void warn_if_curved(const TopSurfaceStatistics& stats, double lambda_nm) {
+void warn_if_curved(const TopSurfaceStatistics& stats, double lambda_nm, const std::string& instance,
+                    std::size_t index) {
   const double radius = stats.mean_curvature_per_nm > 0.0 ? 1.0 / stats.mean_curvature_per_nm
                                                           : std::numeric_limits<double>::infinity();
   if (radius < kMinRadiusWavelengths * lambda_nm) {
-    warn("approx.high_curvature",
-         format("approximate solver: top-surface radius of curvature under the window below %.1f wavelengths, beyond "
-                "the curvature checked against the full-wave BEM (pattern error above %.0f %% there)",
-                kMinRadiusWavelengths, 15.0));
+    warn_at("approx.high_curvature",
+            "approximate solver: " + instance + ": " +
+                format("top-surface radius of curvature under the window below %.1f wavelengths, beyond the "
+                       "curvature checked against the full-wave BEM (pattern error above %.0f %% there)",
+                       kMinRadiusWavelengths, 15.0),
+            WarningSite::Item::instance, index, radius / lambda_nm);
   }
 }
 
-void warn_if_grazing(const TopSurfaceStatistics& stats, double lambda_nm, double theta_i_rad, double phi_i_rad) {
-  if (horizon_spill(stats, lambda_nm, theta_i_rad, phi_i_rad) > kMaxHorizonSpill) {
-    warn("approx.grazing",
-         format("approximate solver: near-grazing incidence, the window's specular lobe reaches the horizon (lobe "
-                "half-width over its distance to phi_o = +-90 deg above %.1f): Eq. 9 and the pattern are unreliable "
-                "(full-wave BEM: pattern error above %.0f %%)",
-                kMaxHorizonSpill, 15.0));
+void warn_if_grazing(const TopSurfaceStatistics& stats, double lambda_nm, double theta_i_rad, double phi_i_rad,
+                     std::size_t item) {
+  const double spill = horizon_spill(stats, lambda_nm, theta_i_rad, phi_i_rad);
+  if (spill > kMaxHorizonSpill) {
+    warn_at("approx.grazing",
+            format("approximate solver: near-grazing incidence, the window's specular lobe reaches the horizon (lobe "
+                   "half-width over its distance to phi_o = +-90 deg above %.1f): Eq. 9 and the pattern are "
+                   "unreliable (full-wave BEM: pattern error above %.0f %%)",
+                   kMaxHorizonSpill, 15.0),
+            WarningSite::Item::azimuth, item, spill);
   }
 }
 

@@ -68,8 +68,16 @@ double horizon_spill(const TopSurfaceStatistics& stats, double lambda_nm, double
 
 // Raise approx.rough_surface / approx.high_curvature (per geometry; `lambda_nm` > 0 for the
 // curvature check) and approx.grazing (per incident direction) when beyond the limits above.
-void warn_if_rough(const TopSurfaceStatistics& stats);
-void warn_if_curved(const TopSurfaceStatistics& stats, double lambda_nm);
-void warn_if_grazing(const TopSurfaceStatistics& stats, double lambda_nm, double theta_i_rad, double phi_i_rad);
+// `instance` names the geometry ("instance 3 (seed 0x…) of species/variant", instance_name()):
+// the per-geometry warnings say which instance; they are raised through warn_at() with the
+// instance index as item (rough) and the azimuth's index `item` in the solve (grazing), so a
+// caller's WarningSites learns which instance or unit raised them and by how much (the rms slope,
+// the radius in wavelengths, the spill ratio).
+std::string instance_name(const CrossSection& section);
+void warn_if_rough(const TopSurfaceStatistics& stats, const std::string& instance, std::size_t index);
+void warn_if_curved(const TopSurfaceStatistics& stats, double lambda_nm, const std::string& instance,
+                    std::size_t index);
+void warn_if_grazing(const TopSurfaceStatistics& stats, double lambda_nm, double theta_i_rad, double phi_i_rad,
+                     std::size_t item);
 
 }  // namespace plumage::detail

@@ -56,6 +56,7 @@ struct Integrator::Vertex {
   const FeatherBsdf* bsdf = nullptr;
   std::array<FeatherBsdf::Incident, kWavelengths> in;  // at (λ_j, ω_view): the sampling proposal
   V3 wv_local;
+  std::uint32_t material = 0;  // index into Scene::materials
   Spectrum4 lambda{};
   bool instance = false;
   std::uint64_t k = 0;
@@ -70,6 +71,53 @@ Integrator::Integrator(const Scene& scene, const Settings& settings, const Embre
   // secondary rays off their own triangle, far below a barbule's width (≥ 1e-3 mm) for X ≤ 500.
   eps_ = 2e-6 * std::max(1.0, embree.extent());
   env_pdf_ = scene.environment.radiance > 0.0 ? 1.0 / (4.0 * kPi) : 0.0;
+  watched_of_material_.resize(scene.materials.size());
+  for (std::size_t k = 0; k < scene.materials.size(); ++k) {
+    const SceneMaterial& m = scene.materials[k];
+    if (m.kind != SceneMaterial::Kind::feather || !m.feather) continue;
+    const FeatherMaterial& fm = m.feather->material();
+    for (MaterialWarning& w : parse_material_warnings(fm.warnings, fm.grid)) {
+      if (!w.directional()) continue;
+      watched_of_material_[k].push_back(watched_.size());
+      watched_.push_back({static_cast<std::uint32_t>(k), std::move(w)});
+    }
+  }
+}
+
+void Integrator::observe(const Vertex& v, V3 wl, const Spectrum4& beta, const Spectrum4& fcos,
+                         PathCounters& counters) const {
+  const std::vector<std::size_t>& slots = watched_of_material_[v.material];
+  if (slots.empty()) return;
+  const V3 l = v.frame.to_local(wl);
+  // The material's incident cosines (feather_bsdf.cpp, incident_geometry).
+  const double ct = std::min(1.0, std::sqrt(l.x * l.x + l.z * l.z));
+  const double cp = ct > 0.0 ? std::min(1.0, std::abs(l.z) / ct) : 0.0;
+  double weight = 0.0;
+  for (int j = 0; j < kWavelengths; ++j) weight += 0.25 * beta[j] * fcos[j];
+  for (std::size_t slot : slots) {
+    WarningTally& t = counters.warnings[slot];
+    ++t.evaluations;
+    t.weight_total += weight;
+    if (watched_[slot].warning.contains(ct, cp)) {
+      ++t.evaluations_in;
+      t.weight_in += weight;
+    }
+  }
+}
+
+std::vector<WarningShare> Integrator::warning_shares(const std::vector<WarningTally>& totals) const {
+  std::vector<WarningShare> out;
+  for (std::size_t k = 0; k < watched_.size() && k < totals.size(); ++k) {
+    const WatchedWarning& w = watched_[k];
+    WarningShare share;
+    share.material = scene_.materials[w.material].name;
+    share.code = w.warning.code;
+    share.directions = describe_cells(w.warning.grid, w.warning.cells);
+    share.weight_in = totals[k].weight_in, share.weight_total = totals[k].weight_total;
+    share.evaluations_in = totals[k].evaluations_in, share.evaluations = totals[k].evaluations;
+    out.push_back(std::move(share));
+  }
+  return out;
 }
 
 V3 Integrator::offset_origin(V3 p, V3 ng, V3 toward) const {
@@ -81,6 +129,7 @@ void Integrator::shade_setup(Vertex& v, const Hit& hit, V3 d, double footprint_m
   const SceneMesh& mesh = scene_.meshes[hit.geom];
   const SceneMaterial& mat = scene_.materials[mesh.material];
   v.kind = mat.kind;
+  v.material = mesh.material;
   v.wv = -d;
   switch (mat.kind) {
     case SceneMaterial::Kind::feather: {
@@ -223,6 +272,7 @@ void Integrator::next_event(const Vertex& vx, const Spectrum4& beta, const Spect
   Spectrum4 fcos, pdf;
   auto connect = [&](V3 wl, double dist, double light_pdf, double radiance_scale, bool delta) {
     eval(vx, wl, fcos, pdf, counters.cache);
+    if (vx.kind == SceneMaterial::Kind::feather) observe(vx, wl, beta, fcos, counters);
     if (fcos[0] == 0.0 && fcos[1] == 0.0 && fcos[2] == 0.0 && fcos[3] == 0.0) return;
     ++counters.rays;
     if (embree_.occluded(offset_origin(p, vx.ng, wl), wl, dist)) return;
@@ -343,6 +393,7 @@ Spectrum4 Integrator::trace(V3 origin, V3 d, double spread, const Spectrum4& lam
     Spectrum4 fcos, pdf;
     bool specular = false, transmitted = false;
     if (!sample(vx, rng, wl, fcos, pdf, specular, transmitted, counters.cache)) break;
+    if (vx.kind == SceneMaterial::Kind::feather) observe(vx, wl, beta, fcos, counters);
     if (specular) {
       for (int j = 0; j < kWavelengths; ++j) beta[j] *= fcos[j];
     } else {

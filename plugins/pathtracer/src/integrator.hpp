@@ -14,9 +14,11 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "embree_scene.hpp"
 #include "incident_cache.hpp"
+#include "plumage/material_warnings.hpp"
 #include "plumage/random.hpp"
 #include "plumage/scene.hpp"
 #include "settings.hpp"
@@ -24,11 +26,28 @@
 
 namespace plumage::pathtracer {
 
-// Per-tile state: counters and the Incident memo (one per tile, so no sharing between threads).
+// Of one watched (material, warning code) pair: the feather BSDF evaluations whose incident
+// direction falls where the characterisation raised the code (plumage/material_warnings.hpp),
+// weighted by the path throughput times f·|cos θ| (mean over the four wavelengths), and all of
+// the material's evaluations.
+struct WarningTally {
+  double weight_in = 0.0, weight_total = 0.0;
+  std::uint64_t evaluations_in = 0, evaluations = 0;
+};
+
+// Per-tile state: counters and the Incident memo (one per tile, so no sharing between threads;
+// the render sums the tiles' tallies in tile order, so the totals do not depend on threads).
 struct PathCounters {
   std::uint64_t rays = 0;
   std::uint64_t feather_points = 0, feather_mean = 0;
+  std::vector<WarningTally> warnings;  // per Integrator::watched() entry
   IncidentCache cache;
+};
+
+// A material's warning code that says where it was raised, watched during the render.
+struct WatchedWarning {
+  std::uint32_t material = 0;  // index into Scene::materials
+  MaterialWarning warning;
 };
 
 // The random numbers of one camera sample: a counter-based stream keyed by (seed, pixel, sample),
@@ -54,6 +73,11 @@ class Integrator {
   Spectrum4 trace(V3 origin, V3 dir, double spread_rad, const Spectrum4& lambda, PathSampler& rng,
                   PathCounters& counters) const;
 
+  // The scene's feather materials' warnings with cells (one tally each in PathCounters), and the
+  // shares from the tallies summed over the render.
+  const std::vector<WatchedWarning>& watched() const { return watched_; }
+  std::vector<WarningShare> warning_shares(const std::vector<WarningTally>& totals) const;
+
  private:
   struct Vertex;
   void shade_setup(Vertex& v, const Hit& hit, V3 dir, double footprint_mm, const Spectrum4& lambda,
@@ -64,6 +88,9 @@ class Integrator {
   void next_event(const Vertex& vx, const Spectrum4& beta, const Spectrum4& d65, double rmean, PathSampler& rng,
                   PathCounters& counters, Spectrum4& L) const;
   V3 offset_origin(V3 p, V3 ng, V3 toward) const;
+  // Counts one feather BSDF evaluation at the world direction wl toward the light (the
+  // material's incident direction) in the tallies of the vertex's material; observes only.
+  void observe(const Vertex& v, V3 wl, const Spectrum4& beta, const Spectrum4& fcos, PathCounters& counters) const;
 
   const Scene& scene_;
   const Settings& settings_;
@@ -71,6 +98,8 @@ class Integrator {
   const SpectralTables& tables_;
   double eps_ = 1e-5;  // ray-origin offset, mm
   double env_pdf_ = 0.0;
+  std::vector<WatchedWarning> watched_;
+  std::vector<std::vector<std::size_t>> watched_of_material_;  // [material] → indices into watched_
 };
 
 }  // namespace plumage::pathtracer

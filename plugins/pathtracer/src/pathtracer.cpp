@@ -114,9 +114,13 @@ RenderResult PathTracer::render(const Scene& scene, Progress progress) const {
   std::atomic<std::size_t> done{0};
   std::mutex progress_mutex;
 
+  // Each tile's warning tallies (Integrator::observe), summed in tile order after the render.
+  std::vector<std::vector<WarningTally>> tile_warnings(integrator.watched().empty() ? 0 : tiles);
+
   auto render_tile = [&](std::size_t tile) {
     const int tx = static_cast<int>(tile % tiles_x), ty = static_cast<int>(tile / tiles_x);
     PathCounters counters;
+    counters.warnings.resize(integrator.watched().size());
     std::vector<double> spectral_acc(static_cast<std::size_t>(std::max(bins, 0)));
     for (int y = ty * T; y < std::min(H, (ty + 1) * T); ++y) {
       for (int x = tx * T; x < std::min(W, (tx + 1) * T); ++x) {
@@ -150,6 +154,7 @@ RenderResult PathTracer::render(const Scene& scene, Progress progress) const {
     rays += counters.rays;
     feather_points += counters.feather_points;
     feather_mean += counters.feather_mean;
+    if (!tile_warnings.empty()) tile_warnings[tile] = std::move(counters.warnings);
     const std::size_t finished = ++done;
     if (progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
@@ -176,6 +181,14 @@ RenderResult PathTracer::render(const Scene& scene, Progress progress) const {
   result.stats.rays = rays.load();
   result.stats.mean_lod_fraction =
       feather_points.load() > 0 ? static_cast<double>(feather_mean.load()) / static_cast<double>(feather_points.load()) : 0.0;
+  std::vector<WarningTally> totals(integrator.watched().size());
+  for (const std::vector<WarningTally>& tile : tile_warnings) {
+    for (std::size_t k = 0; k < tile.size(); ++k) {
+      totals[k].weight_in += tile[k].weight_in, totals[k].weight_total += tile[k].weight_total;
+      totals[k].evaluations_in += tile[k].evaluations_in, totals[k].evaluations += tile[k].evaluations;
+    }
+  }
+  result.warning_shares = integrator.warning_shares(totals);
   return result;
 }
 

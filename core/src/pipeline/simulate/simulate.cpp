@@ -1,13 +1,18 @@
 // simulate(): geometry → far fields of every instance for each work unit (λ, ω_i) → FarFieldSet.
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <map>
+#include <mutex>
 
 #include "plumage/param_table.hpp"
 #include "plumage/conventions.hpp"
 #include "plumage/cross_section.hpp"
 #include "plumage/diagnostics.hpp"
 #include "plumage/simulation.hpp"
+#include "plumage/structure_generator.hpp"
 #include "plumage/version.hpp"
 
 namespace plumage {
@@ -49,12 +54,56 @@ void check_request(const SpeciesConfig& config, const SimulationRequest& request
   }
 }
 
+// Per code raised per instance (WarningSite::Item::instance: approx.rough_surface at preparation,
+// approx.high_curvature per wavelength), the instances that raised it and their worst measure;
+// report() names them (index and seed) in one warning per code, simulate.instances, so a user
+// can regenerate or drop them (`plumage geometry FILE --first N`). Thread-safe add().
+class InstanceWarnings {
+ public:
+  void add(const std::vector<WarningSite>& sites) {
+    std::lock_guard lock(mutex_);
+    for (const WarningSite& site : sites) {
+      if (site.kind != WarningSite::Item::instance) continue;
+      auto [it, fresh] = by_code_[site.code].try_emplace(site.item, site.value);
+      // The measure's worst side: larger slopes, smaller radii.
+      if (!fresh) it->second = site.code == "approx.high_curvature" ? std::min(it->second, site.value)
+                                                                    : std::max(it->second, site.value);
+    }
+  }
+  void report(const SpeciesConfig& config, int instances) const {
+    constexpr std::size_t kListed = 10;
+    for (const auto& [code, by_instance] : by_code_) {
+      const char* measure = code == "approx.rough_surface"     ? "rms slope %.3g rad"
+                            : code == "approx.high_curvature" ? "radius %.3g wavelengths"
+                                                              : "measure %.3g";
+      std::string list;
+      std::size_t listed = 0;
+      for (const auto& [n, value] : by_instance) {
+        if (listed++ == kListed) break;
+        char buffer[96];
+        std::snprintf(buffer, sizeof buffer, "0x%016llx, ", static_cast<unsigned long long>(config.structure->seed_of(n)));
+        char value_text[64];
+        std::snprintf(value_text, sizeof value_text, measure, value);
+        list += (list.empty() ? "" : "; ") + std::string("instance ") + std::to_string(n) + " (seed " + buffer + value_text + ")";
+      }
+      if (by_instance.size() > kListed) list += "; and " + std::to_string(by_instance.size() - kListed) + " more";
+      warn("simulate.instances", code + " raised by " + std::to_string(by_instance.size()) + " of " +
+                                     std::to_string(instances) + " instances of " + config.file.string() + ": " + list);
+    }
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::map<std::size_t, double>> by_code_;
+};
+
 // Geometry and instance-only preparation, once per instance (reused by every unit). An invalid
 // instance (e.g. a segment narrower than the generator's valid range, where platelets cross each
 // other and the outline) would be meshed as given and solved without complaint by a full-wave
 // solver, so it is refused here, as `plumage geometry` refuses it.
 std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepare_instances(const SpeciesConfig& config,
-                                                                                 int instances) {
+                                                                                 int instances,
+                                                                                 InstanceWarnings& named) {
   std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepared(instances);
   std::vector<std::string> invalid(instances);
   tbb::parallel_for(0, instances, [&](int n) {
@@ -63,7 +112,9 @@ std::vector<std::shared_ptr<const ScatteringSolver::Prepared>> prepare_instances
       invalid[n] = problems.front() + (problems.size() > 1 ? " (and more)" : "");
       return;
     }
+    const WarningSites scope;
     prepared[n] = config.solver->prepare(cs, config.reflection);
+    named.add(scope.sites());
   });
   const std::string file = config.file.string();
   for (int n = 0; n < instances; ++n) {
@@ -102,7 +153,8 @@ FarFieldSet simulate(const SpeciesConfig& config, const SimulationRequest& reque
   const int instances = request.instances > 0 ? request.instances : sim.instances;
 
   prepare_species(config, request.preparation);
-  const auto prepared = prepare_instances(config, instances);
+  InstanceWarnings named;
+  const auto prepared = prepare_instances(config, instances, named);
 
   FarFieldSet set;
   set.metadata = set_metadata(config, instances, full);
@@ -125,13 +177,16 @@ FarFieldSet simulate(const SpeciesConfig& config, const SimulationRequest& reque
         unit.instances.resize(instances);
         tbb::parallel_for(0, instances, [&](int n) {
           const double phi_i[1] = {unit.nominal.phi_rad + jitter_rad(n, instances, sim.azimuth_jitter_deg)};
+          const WarningSites scope;
           unit.instances[n] = config.solver->solve(*prepared[n], lambda, theta, phi_i, phi_o).front();
+          named.add(scope.sites());
         });
         set.units.push_back(std::move(unit));
         if (callbacks.progress) callbacks.progress(++done, total);
       }
     }
   }
+  named.report(config, instances);
   // The run's warnings (plumage/diagnostics.hpp) go into the file's header, one line.
   if (!diagnostics().empty()) set.metadata["warnings"] = diagnostics().summary("; ");
   return set;
