@@ -1,14 +1,15 @@
 # plumage: the two-command setup.
 #   make demo   install missing packages, build, render the default scene (build/demo/demo.png)
 #   make test   install missing packages, build, run the default test suite (ctest)
-# Also: make build, make validate (slow validations, ctest label `validation`), make bench.
+# Also: make build, make validate (slow validations, ctest label `validation`), make bench,
+# make fuzz (each libFuzzer harness for 10 minutes), make test-sanitize (unit tests under ASan+UBSan).
 
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 PLUMAGE = $(BUILD)/bin/plumage
 DEMO_OUT = $(BUILD)/demo
 
-.PHONY: all deps configure build demo test validate bench clean
+.PHONY: all deps configure build demo test validate bench fuzz test-sanitize clean
 
 all: build
 
@@ -42,6 +43,25 @@ bench: build
 	$(PLUMAGE) bench multilayer --record docs/benchmarks.md
 	$(PLUMAGE) bench simulate --record docs/benchmarks.md
 	$(PLUMAGE) bench ladder --record docs/benchmarks.md --chart-copy docs/img/ladder.png
+
+# Each harness of fuzz/ for FUZZ_SECONDS (default 10 minutes), one at a time; new corpus entries
+# and findings go to $(BUILD)/fuzz/campaign/ (fuzz/README.md). Needs clang + libclang-rt-14-dev.
+FUZZ_SECONDS ?= 600
+fuzz: build
+	scripts/fuzz_campaign.sh $(BUILD) $(FUZZ_SECONDS)
+
+# The default unit tests once under AddressSanitizer + UndefinedBehaviorSanitizer (g++, the
+# compiler of the main build), in their own build folder. Not run there: the fuzz smoke tests
+# (already sanitized, with clang) and the MPI launch (OpenMPI's runtime is not instrumented and
+# reports its own allocations as leaks); see docs/validation.md.
+SANITIZE_BUILD ?= build-sanitize
+test-sanitize: deps
+	@cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Release -DPLUMAGE_SANITIZE=ON -DPLUMAGE_FUZZ=OFF \
+	  > $(SANITIZE_BUILD).configure.log 2>&1 || (cat $(SANITIZE_BUILD).configure.log; exit 1)
+	@rm -f $(SANITIZE_BUILD).configure.log
+	cmake --build $(SANITIZE_BUILD) -j $(JOBS)
+	cd $(SANITIZE_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  ctest --output-on-failure -j $(JOBS) -LE validation -E '^cli_characterize_mpi$$'
 
 clean:
 	rm -rf $(BUILD)

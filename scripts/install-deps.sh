@@ -9,6 +9,7 @@ packages=(
   libceres-dev libopenexr-dev libembree-dev catch2 libtbb-dev libcli11-dev
   libopenmpi-dev libpng-dev libstb-dev python3-matplotlib
   libflint-arb-dev libflint-dev   # Arb: rigorous reference for the BEM's Hankel functions (tests)
+  clang libclang-rt-14-dev       # libFuzzer + ASan/UBSan for the fuzz harnesses (fuzz/, make fuzz)
 )
 
 missing=()

@@ -88,7 +88,13 @@ MergeResult merge_shards(const std::vector<std::filesystem::path>& shards, const
     for (auto& r : j.records) records.push_back(std::move(r)), shard_of.push_back(k);
   }
   MergeResult result;
-  result.settings = CharacterizeSettings::from_fingerprint(fingerprint, config_hash, inputs);
+  // A header that parses as a journal but not as settings (a damaged field) is bad input of the
+  // shard it came from (all shards share it; found by fuzz/fuzz_merge).
+  try {
+    result.settings = CharacterizeSettings::from_fingerprint(fingerprint, config_hash, inputs);
+  } catch (const Error& e) {
+    throw InputFileError(shards.front().string(), e.what());
+  }
   check_groups(result.settings, records, shard_of, shards);
   try {
     write_feather_material(out, assemble_material(result.settings, records));

@@ -1,5 +1,6 @@
 // Characterisation settings: the material key and the fingerprint that heads journals and shard
 // files (characterize_settings.hpp).
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
@@ -63,6 +64,17 @@ CharacterizeSettings CharacterizeSettings::from_fingerprint(const std::string& l
     return it->second;
   };
   auto num = [&](const char* k) { return std::strtod(field(k).c_str(), nullptr); };
+  // A damaged header is refused with the field named, not with std::stoi's bare "stoi" (an
+  // uncaught std::invalid_argument, found by fuzz/fuzz_merge); the key and round-trip checks
+  // below catch the rest.
+  auto integer = [&](const char* k) {
+    const std::string& v = field(k);
+    int value = 0;
+    const auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), value);
+    if (v.empty() || ec != std::errc() || end != v.data() + v.size())
+      throw Error(std::string("characterisation header: field ") + k + ": '" + v + "' is not an integer");
+    return value;
+  };
   CharacterizeSettings s;
   if (field("fit_revision") != std::to_string(kFitRevision))
     throw Error("characterisation records of fit revision " + field("fit_revision") + ", this build writes " +
@@ -72,16 +84,16 @@ CharacterizeSettings CharacterizeSettings::from_fingerprint(const std::string& l
   s.variant = field("variant");
   s.inputs = inputs;
   s.fidelity = field("fidelity");
-  s.instances = std::stoi(field("instances"));
-  s.grid = std::stoi(field("grid"));
+  s.instances = integer("instances");
+  s.grid = integer("grid");
   std::istringstream l(field("lambda_nm"));
   for (std::string v; std::getline(l, v, ',');) s.lambda_nm.push_back(std::strtod(v.c_str(), nullptr));
   s.bin_width_nm = num("bin_width_nm");
-  s.pattern_samples = std::stoi(field("pattern"));
-  s.projected_samples = std::stoi(field("projected"));
+  s.pattern_samples = integer("pattern");
+  s.projected_samples = integer("projected");
   s.jitter_deg = num("jitter_deg");
   s.sigma = num("sigma");
-  s.noise_functions = std::stoi(field("noise_functions"));
+  s.noise_functions = integer("noise_functions");
   if (s.key() != field("key")) throw Error("characterisation header: its key does not match its inputs and settings");
   if (s.fingerprint() != line) throw Error("characterisation header does not round-trip: " + line);
   return s;
