@@ -139,9 +139,11 @@ TEST_CASE("characterize refuses an absurd work-unit count naming the count and t
 TEST_CASE("geometry refuses outlines whose vertices would not fit, at the key", "[cli][budgets]") {
   const struct {
     const char *pattern, *replacement, *key;
-  } cases[] = {{"width_um: 20", "width_um: 1e12", "outline.width_um"},
-               {"spacing_nm: 30", "spacing_nm: 1e-9", "outline.spacing_nm"},
-               {"thickness_um: 4.0", "thickness_um: 1e20", "outline.thickness_um"}};
+  } cases[] = {// The largest/smallest values the declared ranges admit (1e12 um and the like are refused by
+               // the range itself: tests/cli/test_hardening_check.cpp), over a 1 MiB budget.
+               {"width_um: 20", "width_um: 10000", "outline.width_um"},
+               {"spacing_nm: 30", "spacing_nm: 1", "outline.spacing_nm"},
+               {"thickness_um: 4.0", "thickness_um: 1000", "outline.thickness_um"}};
   int k = 0;
   for (const auto& c : cases) {
     const fs::path config = variant_of("configs/species/rockdove.yaml", c.pattern, c.replacement,
@@ -149,7 +151,7 @@ TEST_CASE("geometry refuses outlines whose vertices would not fit, at the key", 
     const fs::path out = plumage::cli_test::fresh_scratch_path(kSuite, "geometry");
     for (const std::string& command : {"geometry " + config.string() + " --instances 1 --out " + out.string(),
                                        "check " + config.string()}) {
-      const Timed t = timed_run("--max-memory 16GiB " + command);
+      const Timed t = timed_run("--max-memory 1MiB " + command);
       INFO(c.replacement << ": " << command);
       require_refused(t);
       CHECK_THAT(t.result.output, Catch::Contains(config.string() + ":") && Catch::Contains("barbule outline") &&

@@ -215,7 +215,7 @@ TEST_CASE("table commands reject bad input with exit 2 and write nothing", "[cli
   std::ofstream(junk) << "not a table\n";
   r = run("table query " + junk.string() + " --lambda-nm 500");
   CHECK(r.status == 2);
-  CHECK_THAT(r.output, Catch::Contains("junk.plt") && Catch::Contains("not a PLMRTAB file"));
+  CHECK_THAT(r.output, Catch::Contains("junk.plt") && Catch::Contains("not a PLMRTAB reflection table"));
   r = run("table plot " + junk.string() + " --out " + (dir / "junk.png").string());
   CHECK(r.status == 2);
   CHECK_FALSE(fs::exists(dir / "junk.png"));

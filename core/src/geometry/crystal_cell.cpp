@@ -73,7 +73,9 @@ void collect_builder_sections(const ParamView& node, CrystalCell& c) {
     if (std::find(known.begin(), known.end(), key) != known.end()) continue;
     const YAML::Node& map = node.state()->node;
     const YAML::Node value = map[key];
-    if (!value.IsMap()) continue;  // finish() reports it
+    // A key yaml-cpp cannot look up again by its text (a null key spelt `NULL`, found by
+    // fuzz_crystal) gives an invalid node, whose IsMap() throws: finish() reports the key instead.
+    if (!value.IsDefined() || !value.IsMap()) continue;
     if (auto near = nearest_name(key, fields)) {
       node.fail(key, "unknown key (did you mean '" + *near + "'?); a map under any other key is a table builder's section");
     }

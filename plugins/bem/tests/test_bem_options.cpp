@@ -36,7 +36,8 @@ std::vector<double> fingerprint(const BemOptions& o) {
           o.warm_start ? 1.0 : 0.0,
           static_cast<double>(o.log_file.size()),
           o.warn_min_ppw,
-          o.warn_gap_ratio};
+          o.warn_gap_ratio,
+          static_cast<double>(o.max_memory.size())};
 }
 
 // A value other than the default, of the parameter's type and within its range.
@@ -45,6 +46,7 @@ std::string other_value(const ParamSpec& spec) {
   if (spec.type == "integer") return std::to_string(std::stol(spec.default_value) + 1);
   if (spec.type == "bool") return spec.default_value == "true" ? "false" : "true";
   if (spec.type == "text") return "bem-timings.log";
+  if (spec.type == "size") return "2GiB";  // max_memory
   REQUIRE(spec.type == "choice");
   for (std::size_t start = 0;;) {  // range "a | b | c"
     const std::size_t bar = spec.range.find(" | ", start);
@@ -81,7 +83,7 @@ TEST_CASE("bem parameter table: each declared parameter is read into its own fie
   const std::vector<double> base = fingerprint(BemOptions{});
   std::set<std::size_t> fields;
   const auto specs = bem_options_table().specs();
-  REQUIRE(specs.size() == 19);
+  REQUIRE(specs.size() == 20);
   for (const ParamSpec& spec : specs) {
     const std::string yaml = spec.name + ": " + other_value(spec);
     INFO(yaml);

@@ -211,7 +211,7 @@ TEST_CASE("layered_barbule documents the parameters it reads", "[layered_barbule
   for (const ParamSpec& p : entry->info.params) rows[p.name] = p;
   REQUIRE(rows.count("outline.width_um"));
   CHECK(rows.at("outline.width_um").unit == "um");
-  CHECK(rows.at("outline.width_um").range == "> 0");
+  CHECK(rows.at("outline.width_um").range == "in (0, 10000]");
   REQUIRE(rows.count("outline.bottom.roughness.correlation_um"));
   CHECK(rows.at("outline.cap_ratio").condition == "shape: pillow");
   CHECK(rows.at("layers").condition == "model: platelets");
