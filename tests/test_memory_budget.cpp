@@ -39,11 +39,19 @@ TEST_CASE("the machine's memory is read from /proc/meminfo and the cgroup", "[me
   CHECK_FALSE(a.source.empty());
   clear_memory_limit();
   CHECK(memory_available().source == a.source);
+  // A limit bounds the whole process: what is already resident is not available.
+  const std::uint64_t resident = resident_bytes();
+  CHECK(resident > (1ull << 20));  // this test binary holds more than 1 MiB
   set_memory_limit(1ull << 30, "--max-memory 1GiB");
-  CHECK(memory_available().bytes == 1ull << 30);
-  CHECK(memory_available("").source == "--max-memory 1GiB");
-  CHECK(memory_available("2GiB").bytes == 2ull << 30);
-  CHECK(memory_available("2GiB").source == "max_memory: 2GiB");
+  const MemoryAvailability limited = memory_available();
+  CHECK(limited.bytes < 1ull << 30);
+  CHECK(limited.bytes > (1ull << 30) - 2 * resident - (16ull << 20));
+  CHECK_THAT(memory_available("").source, Catch::StartsWith("--max-memory 1GiB less ") && Catch::EndsWith(" resident"));
+  CHECK(memory_available("2GiB").bytes < 2ull << 30);
+  CHECK(memory_available("2GiB").bytes > (2ull << 30) - 2 * resident - (16ull << 20));
+  CHECK_THAT(memory_available("2GiB").source, Catch::StartsWith("max_memory: 2GiB less "));
+  set_memory_limit(1ull << 10, "--max-memory 1KiB");
+  CHECK(memory_available().bytes == 0);  // less than the process already holds: nothing left
   CHECK_THROWS_AS(memory_available("lots"), std::invalid_argument);
   clear_memory_limit();
 }

@@ -7,6 +7,7 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include "plumage/atomic_file.hpp"
@@ -24,6 +25,14 @@ void check_output_flag(std::string_view flag, const std::string& path, const std
 }
 
 void check_output_folder_flag(std::string_view flag, const std::string& path) { check_output_directory(path, flag); }
+
+std::string material_warnings_report(const std::string& warnings) {
+  if (warnings.empty()) return {};
+  std::string out = "the material's warnings (stored in it):\n";
+  std::istringstream in(warnings);
+  for (std::string line; std::getline(in, line);) out += "  " + line + "\n";
+  return out;
+}
 
 const PluginRegistry& AppContext::registry() {
   if (!registry_) {

@@ -28,6 +28,10 @@ void check_output_flag(std::string_view flag, const std::string& path, const std
                        std::string_view role = "input");
 void check_output_folder_flag(std::string_view flag, const std::string& path);
 
+// A material's per-code warning lines (plumage/material_warnings.hpp) as characterize and merge
+// print them after the fit summary: a heading, then each line indented; nothing if there are none.
+std::string material_warnings_report(const std::string& warnings);
+
 class AppContext {
  public:
   std::vector<std::filesystem::path> plugin_dirs;  // from --plugin-path

@@ -56,13 +56,6 @@ CharacterizeShard parse_shard(const std::string& text) {
   return {i - 1, n};
 }
 
-std::string indent(const std::string& lines) {
-  std::string out;
-  std::istringstream in(lines);
-  for (std::string line; std::getline(in, line);) out += "  " + line + "\n";
-  return out;
-}
-
 void print_plan(const CharacterizeSettings& s, const CharacterizePlan& plan) {
   std::cerr << s.label << ": " << s.fidelity << ", " << s.lambda_nm.size() << " wavelengths x " << s.grid << " x "
             << s.grid << " incident nodes, " << s.instances << " instances";
@@ -101,7 +94,7 @@ void run(AppContext& context, const Options& o) {
   if (!context.quiet) {
     std::cerr << r.fit_summary << "\n";
     // Where and how much, per code (the first raise of each was printed as it happened).
-    if (!r.warnings.empty()) std::cerr << "the material's warnings (stored in it):\n" << indent(r.warnings);
+    std::cerr << material_warnings_report(r.warnings);
     std::cerr << "wrote " << out.string() << " (" << std::filesystem::file_size(out) << " bytes) in " << std::fixed
               << std::setprecision(1) << r.wall_s << " s wall, " << r.cpu_s << " s CPU (this process"
               << (r.plan.mpi ? ", rank 0" : "") << ", " << r.plan.todo << " groups computed)\n";

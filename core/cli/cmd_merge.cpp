@@ -21,6 +21,7 @@ void run(AppContext& context, const Options& o) {
   const MergeResult merged = merge_shards(shards, o.out);
   if (!context.quiet) {
     std::cerr << merged.fit_summary << "\n";
+    std::cerr << material_warnings_report(merged.warnings);  // where and how much, per code
     std::cerr << "wrote " << o.out << " from " << o.shards.size() << " shards\n";
   }
 }

@@ -103,6 +103,7 @@ CharacterizeResult characterize(const SpeciesConfig& config, const CharacterizeS
 struct MergeResult {
   CharacterizeSettings settings;
   std::string fit_summary;
+  std::string warnings;  // as CharacterizeResult::warnings: one "<code>: <where and how much>" line per code
 };
 MergeResult merge_shards(const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out);
 

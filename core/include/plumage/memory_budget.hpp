@@ -43,12 +43,17 @@ struct MemoryAvailability {
 // What the machine offers now: the smallest of MemAvailable and the cgroup's remaining limit.
 MemoryAvailability machine_memory_available();
 
-// The process's budget: a limit set with set_memory_limit(), else machine_memory_available().
+// This process's resident set now (/proc/self/statm; 0 where there is none).
+std::uint64_t resident_bytes();
+
+// The process's budget: a limit set with set_memory_limit() less what the process already holds
+// (resident_bytes(): the limit bounds the whole process), else machine_memory_available().
 MemoryAvailability memory_available();
 void set_memory_limit(std::uint64_t bytes, std::string source);
 void clear_memory_limit();
 
-// The budget for one job: `configured` (a config key's text, "" = none) if set, else the process's.
+// The budget for one job: `configured` (a config key's text, "" = none; a whole-process limit like
+// --max-memory, less what is resident) if set, else the process's.
 // Throws std::invalid_argument for unparsable text (a table's key is checked when it is read).
 MemoryAvailability memory_available(std::string_view configured);
 

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <unistd.h>
+
 namespace plumage {
 
 namespace {
@@ -62,7 +64,7 @@ std::optional<MemoryAvailability> cgroup_available() {
   }
   const std::string v1 = cgroup_path(false);
   if (!v1.empty()) {
-    for (const std::string dir : {"/sys/fs/cgroup/memory" + v1, std::string("/sys/fs/cgroup/memory")}) {
+    for (const std::string& dir : {"/sys/fs/cgroup/memory" + v1, std::string("/sys/fs/cgroup/memory")}) {
       consider(read_number(dir + "/memory.limit_in_bytes"), read_number(dir + "/memory.usage_in_bytes"),
                "cgroup v1 " + dir + "/memory.limit_in_bytes");
     }
@@ -142,17 +144,37 @@ MemoryAvailability machine_memory_available() {
   return out;
 }
 
+std::uint64_t resident_bytes() {
+  std::ifstream in("/proc/self/statm");
+  double size_pages = 0, resident_pages = 0;
+  if (!(in >> size_pages >> resident_pages)) return 0;
+  return static_cast<std::uint64_t>(resident_pages * static_cast<double>(sysconf(_SC_PAGESIZE)));
+}
+
+namespace {
+// A limit bounds the whole process: what is already resident (libraries, plug-ins, loaded
+// tables, earlier steps' results) is not available to the next job. MemAvailable needs no such
+// correction: it already excludes what this process holds.
+MemoryAvailability less_resident(std::uint64_t limit, const std::string& source) {
+  const std::uint64_t in_use = resident_bytes();
+  const std::uint64_t left = limit > in_use ? limit - in_use : 0;
+  return {left, source + " less " + format_bytes(static_cast<double>(in_use)) + " resident"};
+}
+}  // namespace
+
 MemoryAvailability memory_available() {
+  std::optional<MemoryAvailability> limit;
   {
     std::lock_guard lock(state_mutex());
-    if (process_limit()) return *process_limit();
+    limit = process_limit();
   }
+  if (limit) return less_resident(limit->bytes, limit->source);
   return machine_memory_available();
 }
 
 MemoryAvailability memory_available(std::string_view configured) {
   if (trim(configured).empty()) return memory_available();
-  return {parse_memory_size(configured), "max_memory: " + trim(configured)};
+  return less_resident(parse_memory_size(configured), "max_memory: " + trim(configured));
 }
 
 void set_memory_limit(std::uint64_t bytes, std::string source) {

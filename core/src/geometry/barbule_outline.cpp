@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 
 #include "plumage/error.hpp"
@@ -117,9 +118,12 @@ static void check_outline_memory(const ParamView& node, const OutlineSpec& s) {
   const double perimeter_nm = 2.0 * (s.width_nm + (s.thickness_given ? s.thickness_nm : 0.0));
   const double vertices = perimeter_nm / s.spacing_nm;
   MemoryEstimate e;
-  e.job = node.mark().str() + ": barbule outline of " + std::to_string(s.width_nm / 1000.0) + " um x " +
-          (s.thickness_given ? std::to_string(s.thickness_nm / 1000.0) : std::string("?")) + " um at spacing_nm " +
-          std::to_string(s.spacing_nm) + " (~" + std::to_string(vertices) + " vertices)";
+  char thickness[32] = "?";
+  if (s.thickness_given) std::snprintf(thickness, sizeof thickness, "%g", s.thickness_nm / 1000.0);
+  char job[200];
+  std::snprintf(job, sizeof job, "barbule outline of %g um x %s um at spacing_nm %g (~%.3g vertices)", s.width_nm / 1000.0,
+                thickness, s.spacing_nm, vertices);
+  e.job = node.mark().str() + ": " + job;
   e.add("outline vertices and their copies", 1024.0 * vertices);
   e.lower_with = {"outline.spacing_nm (larger)", "outline.width_um", "outline.thickness_um"};
   check_memory(e);

@@ -272,7 +272,9 @@ FeatherMaterial read_feather_material(const std::filesystem::path& file) {
   const std::size_t values = static_cast<std::size_t>(count) * static_cast<std::size_t>(m.noise.samples);
   r.need(values * sizeof(float));
   m.noise.functions.resize(values);
-  std::memcpy(m.noise.functions.data(), data.data() + r.position(), values * sizeof(float));
+  // No functions: nothing to copy (memcpy from/to an empty vector's null data() is undefined;
+  // found by fuzz/fuzz_plm, input in fuzz/regressions/plm).
+  if (values > 0) std::memcpy(m.noise.functions.data(), data.data() + r.position(), values * sizeof(float));
   if (r.position() + values * sizeof(float) + 8 != data.size()) r.fail("trailing bytes in feather material");
   check_table_values(m, r);
   return m;

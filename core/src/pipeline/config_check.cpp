@@ -11,7 +11,9 @@
 #include "plumage/comparison.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
+#include "pipeline/solve_memory.hpp"
 #include "plumage/error.hpp"
+#include "plumage/far_field.hpp"
 #include "plumage/memory_budget.hpp"
 #include "plumage/render_job.hpp"
 #include "plumage/species_config.hpp"
@@ -42,21 +44,16 @@ bool collect(ConfigCheck& c, const std::function<void()>& step) {
   return false;
 }
 
-// The memory of one solve of instance 0, as the solver itself would refuse it before assembly
-// (ScatteringSolver::estimate_memory): at the shortest and the longest of the simulation's
-// wavelengths (a BEM mesh grows as 1/λ), with the incident grid's azimuths per θ_i and the pattern's
-// outgoing samples. A solver with nothing large to hold returns an empty estimate.
-void check_solver_memory(const SpeciesConfig& config, const StructureGenerator& structure) {
-  const auto& lambdas = config.simulation.wavelengths_nm;
-  if (!config.solver || lambdas.empty()) return;
-  const CrossSection section = structure.generate(0);
-  const auto [lo, hi] = std::minmax_element(lambdas.begin(), lambdas.end());
-  for (double lambda : {*lo, *hi}) {
-    const MemoryEstimate e =
-        config.solver->estimate_memory(section, lambda, static_cast<std::size_t>(config.simulation.incident_grid),
-                                       static_cast<std::size_t>(config.simulation.pattern_samples));
-    if (!e.parts.empty()) check_memory(e);
-  }
+// The memory of the run's solves, as `simulate` and `characterize` plan them before any work
+// (solve_memory.hpp: instance 0 at the shortest and the longest wavelength, the incident grid's
+// azimuths per solve, the pattern's and projected outgoing directions): refused when a single
+// solve does not fit; a note when fewer instances than threads can be solved at a time.
+void check_solver_memory(const SpeciesConfig& config) {
+  const SimulationSettings& sim = config.simulation;
+  plan_parallel_solves(config, sim.wavelengths_nm, static_cast<std::size_t>(sim.incident_grid),
+                       pattern_directions(sim.pattern_samples).phi_o_rad.size() +
+                           projected_directions(0.0, sim.projected_samples).phi_o_rad.size(),
+                       sim.instances, "check");
 }
 
 // Every variant by name (the default too, which load_species_config checks against `variants:`
@@ -70,7 +67,8 @@ void check_species(const std::filesystem::path& file, const PluginRegistry& regi
   for (const auto& v : variants) {
     collect(c, [&] {
       const SpeciesConfig config = load_species_config(file, registry, v);
-      check_solver_memory(config, required_structure(config));
+      required_structure(config);
+      check_solver_memory(config);
       const std::string work = pending_preparation(config);
       if (!work.empty()) c.to_prepare.push_back((v.empty() ? "" : v + ": ") + work);
     });

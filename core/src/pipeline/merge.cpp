@@ -6,6 +6,7 @@
 
 #include "plumage/atomic_file.hpp"
 #include "plumage/input_file.hpp"
+#include "plumage/material_warnings.hpp"
 
 namespace plumage {
 
@@ -97,7 +98,9 @@ MergeResult merge_shards(const std::vector<std::filesystem::path>& shards, const
   }
   check_groups(result.settings, records, shard_of, shards);
   try {
-    write_feather_material(out, assemble_material(result.settings, records));
+    const FeatherMaterial material = assemble_material(result.settings, records);
+    write_feather_material(out, material);
+    result.warnings = material_warning_summaries(material.warnings);
   } catch (const OutputPathError&) {
     throw;  // bad input, not a failed write: keeps its type (exit status 2)
   } catch (const Error& e) {

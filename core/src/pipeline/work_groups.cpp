@@ -10,6 +10,7 @@
 #include <set>
 
 #include "journal.hpp"
+#include "solve_memory.hpp"
 #include "plumage/conventions.hpp"
 #include "plumage/diagnostics.hpp"
 #include "plumage/far_field.hpp"
@@ -132,9 +133,16 @@ void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, 
   // this process computes.
   const RaiseCounts before_prepare = raise_counts();
   PreparedInstances prepared;
+  SolvePlan plan;
   if (!todo.empty()) {
     prepare_species(config, preparation);
     prepared = prepare_instances(config, s);
+    // Before the solves, with the tables and the prepared instances resident: how many instances
+    // the budget lets us solve at a time (solve_memory.hpp). `plumage check` runs the same plan.
+    plan = plan_parallel_solves(config, s.lambda_nm, static_cast<std::size_t>(s.grid),
+                                pattern_directions(s.pattern_samples).phi_o_rad.size() +
+                                    projected_directions(0.0, s.projected_samples).phi_o_rad.size(),
+                                s.instances, "characterize");
   }
   const std::set<std::string> prepare_codes = raised_since(before_prepare);
   JournalWriter writer(journal, s, valid_bytes);
@@ -146,7 +154,8 @@ void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, 
       throw CharacterizeCancelled(s.label + ": characterisation cancelled after " + std::to_string(count) + " of " +
                                   std::to_string(todo.size()) + " groups (" + journal.string() + " resumes it)");
     const RaiseCounts before = raise_counts();
-    GroupRecord record = run_group(config, s, prepared, g, diagnostics);
+    GroupRecord record;
+    run_with_plan(plan, [&] { record = run_group(config, s, prepared, g, diagnostics); });
     std::set<std::string> codes = raised_since(before);
     codes.insert(prepare_codes.begin(), prepare_codes.end());
     record.warnings.assign(codes.begin(), codes.end());

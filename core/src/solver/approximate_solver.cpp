@@ -262,6 +262,41 @@ std::shared_ptr<const ScatteringSolver::Prepared> ApproximateSolver::prepare(
   return p;
 }
 
+// One solve()'s buffers (the Prepared instance, held by the caller, is not counted): the batch of
+// local-reflection requests and answers, the current amplitudes and incident phases, the
+// Radiator's (radiation.hpp: the larger of the chunked and the exact evaluation, since the
+// directions' values are not known here) and the far fields. At θ_i = 0, where γ0 and so the
+// chunks' sampling are largest.
+MemoryEstimate ApproximateSolver::estimate_memory(const CrossSection& section, double lambda_nm, std::size_t n_phi_i,
+                                                  std::size_t n_phi_o) const {
+  MemoryEstimate e;
+  const std::size_t verts = section.top.size();
+  if (verts < 3) return e;
+  const double nodes = static_cast<double>(verts - 2), n_phi = static_cast<double>(n_phi_i);
+  const double points = reflection_samples_ > 1 ? static_cast<double>((verts - 1) * reflection_samples_ - 1) : nodes;
+  const bool lossless = normalisation_ != Normalisation::eq9;
+  const std::size_t columns = lossless ? 24 : 12;
+  e.job = "approximate solve of " + std::to_string(verts - 2) + " top nodes x " + std::to_string(n_phi_i) +
+          " incident azimuths at " + std::to_string(static_cast<int>(std::lround(lambda_nm))) + " nm";
+  e.add("local reflection batch", points * n_phi * (sizeof(LocalReflection::Request) + sizeof(JonesReflection)));
+  e.add("current amplitudes", nodes * n_phi * (static_cast<double>(columns) * 16.0) + static_cast<double>(verts) * n_phi * 8.0);
+  std::vector<double> segment_length;
+  for (std::size_t k = 0; k + 1 < verts; ++k) segment_length.push_back(norm(section.top[k + 1] - section.top[k]));
+  std::vector<std::size_t> targets{n_phi_o};
+  if (lossless) targets.push_back(static_cast<std::size_t>(kReferenceBins));
+  const double gamma0 = wavenumber_per_nm(lambda_nm);
+  double radiation = 0.0;
+  for (bool on_cone : {true, false}) {
+    radiation = std::max(radiation, detail::Radiator::estimate_bytes(section.top, segment_length, gamma0, targets, on_cone,
+                                                                     chunking_, n_phi_i, columns));
+  }
+  e.add("far-field radiation", radiation);
+  e.add("far fields", n_phi * static_cast<double>(n_phi_o) * 2.0 * 16.0);
+  e.lower_with = {"outline.spacing_nm (fewer top nodes)", "a narrower segment (outline.width_um)",
+                  "fewer incident azimuths (incident_grid)"};
+  return e;
+}
+
 std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double lambda_nm,
                                                double theta_i_rad,
                                                std::span<const double> phi_i_rad,

@@ -54,6 +54,9 @@ class ApproximateSolver final : public ScatteringSolver {
                               std::span<const double> phi_i_rad,
                               std::span<const double> phi_o_rad) const override;
 
+  MemoryEstimate estimate_memory(const CrossSection& section, double lambda_nm, std::size_t n_phi_i,
+                                 std::size_t n_phi_o) const override;
+
   // The Eq. 2 currents at the interior top nodes for one incident direction, incident phase
   // included: [pol][node] of (J̃ = η0 J, M), for diagnostics and independent checks.
   struct NodeCurrents {

@@ -237,6 +237,30 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
   }
 }
 
+double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
+                                std::span<const std::size_t> target_sizes, bool on_cone, const ChunkingOptions& options,
+                                std::size_t n_phi, std::size_t columns) {
+  const double verts = static_cast<double>(vertices.size()), c = static_cast<double>(columns);
+  double directions = 0.0;
+  for (const std::size_t n : target_sizes) directions += static_cast<double>(n);
+  const double outputs = c / 3.0;  // two outputs per group of six columns
+  double bytes = static_cast<double>(n_phi) * directions * outputs * 16.0;  // results
+  if (!options.chunked || !on_cone || vertices.size() < 3) {
+    // the exact sum: one kernel block of kDirectionBlock directions and its products at a time
+    const double block = static_cast<double>(kDirectionBlock);
+    return bytes + verts * block * 16.0 * 2.0 + block * c * 16.0 * 2.0 + verts * 8.0 * 12.0;
+  }
+  const ChunkLayout layout = chunk_layout(vertices, segment_length, gamma0, options);
+  const double samples = static_cast<double>(layout.samples), chunks = static_cast<double>(layout.chunks.size());
+  bytes += (verts + 2.0 * chunks) * samples * 16.0;                      // outgoing phases per chunk
+  bytes += chunks * (directions + 4.0 * static_cast<double>(target_sizes.size())) * 16.0;  // chunk phases
+  bytes += 2.0 * samples * static_cast<double>(layout.max_count + 2) * 8.0 * 2.0;  // kernel_split, product
+  bytes += static_cast<double>(n_phi) * (verts - 2.0) * 2.0 * c * 8.0;  // amplitude_split
+  bytes += static_cast<double>(n_phi) * (samples + directions) * 2.0 * outputs * 8.0;  // rows, accumulated
+  bytes += static_cast<double>(layout.max_count + 2) * 8.0 * 13.0;      // the kernel's per-node buffers
+  return bytes;
+}
+
 Radiator::~Radiator() {
   if (plan_) spare_plan = std::move(plan_);
 }

@@ -63,6 +63,13 @@ class Radiator {
   void radiate_all(std::span<const std::vector<double>> chi, std::span<const Eigen::MatrixXcd> amplitudes,
                    std::span<const RadiationTargets> layout, std::vector<Eigen::MatrixXcd>& results);
 
+  // Upper bound of the bytes a Radiator of these arguments and radiate_all() over `n_phi`
+  // azimuths of `columns` current columns hold (plan, chunk tables, kernel, split amplitudes,
+  // accumulators, results), from the same chunk layout, without building anything.
+  static double estimate_bytes(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
+                               std::span<const std::size_t> target_sizes, bool on_cone, const ChunkingOptions& options,
+                               std::size_t n_phi, std::size_t columns);
+
   struct Plan;  // radiation.cpp
 
  private:

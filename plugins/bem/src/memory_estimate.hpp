@@ -13,7 +13,10 @@
 //                per near entry at 14 000 unknowns, growing as N^0.4) and the Krylov basis;
 //                dense_single replaces the sparse LU by 8 N^2 bytes.
 //   all:         right-hand sides, solutions and warm-start products 3 x 16 N R, the far-field
-//                operator 48 N P, and 64 bytes per unknown of mesh and bookkeeping.
+//                operator 48 N P and its product's workspace 16 N P, and 64 bytes per unknown of
+//                mesh and bookkeeping.
+// The estimate is one solve's; the pipeline multiplies it by the solves it runs at a time and
+// adds what the process already holds (core/src/pipeline/solve_memory.hpp).
 // docs/benchmarks.md "Memory estimates" compares it with measured peaks (an upper bound within ~2x).
 #pragma once
 

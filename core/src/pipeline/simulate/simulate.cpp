@@ -14,6 +14,7 @@
 #include "plumage/simulation.hpp"
 #include "plumage/structure_generator.hpp"
 #include "plumage/version.hpp"
+#include "pipeline/solve_memory.hpp"
 
 namespace plumage {
 
@@ -155,6 +156,12 @@ FarFieldSet simulate(const SpeciesConfig& config, const SimulationRequest& reque
   prepare_species(config, request.preparation);
   InstanceWarnings named;
   const auto prepared = prepare_instances(config, instances, named);
+  // Before the solves, with the tables and the prepared instances resident: how many instances
+  // the budget lets us solve at a time (solve_memory.hpp). `plumage check` runs the same plan.
+  const std::size_t n_phi_o = full ? static_cast<std::size_t>(kFullCircleSamples)
+                                   : pattern_directions(sim.pattern_samples).phi_o_rad.size() +
+                                         projected_directions(0.0, sim.projected_samples).phi_o_rad.size();
+  const SolvePlan plan = plan_parallel_solves(config, lambdas, 1, n_phi_o, instances, "simulate");
 
   FarFieldSet set;
   set.metadata = set_metadata(config, instances, full);
@@ -175,11 +182,13 @@ FarFieldSet simulate(const SpeciesConfig& config, const SimulationRequest& reque
         unit.nominal = {theta, deg_to_rad(phi_deg)};
         unit.pattern_count = full ? 0 : pattern.phi_o_rad.size();
         unit.instances.resize(instances);
-        tbb::parallel_for(0, instances, [&](int n) {
-          const double phi_i[1] = {unit.nominal.phi_rad + jitter_rad(n, instances, sim.azimuth_jitter_deg)};
-          const WarningSites scope;
-          unit.instances[n] = config.solver->solve(*prepared[n], lambda, theta, phi_i, phi_o).front();
-          named.add(scope.sites());
+        run_with_plan(plan, [&] {
+          tbb::parallel_for(0, instances, [&](int n) {
+            const double phi_i[1] = {unit.nominal.phi_rad + jitter_rad(n, instances, sim.azimuth_jitter_deg)};
+            const WarningSites scope;
+            unit.instances[n] = config.solver->solve(*prepared[n], lambda, theta, phi_i, phi_o).front();
+            named.add(scope.sites());
+          });
         });
         set.units.push_back(std::move(unit));
         if (callbacks.progress) callbacks.progress(++done, total);
