@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "plumage/far_field.hpp"
+#include "plumage/memory_budget.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "solver/approximate_solver.hpp"
 #include "solver/tent_integrals.hpp"
@@ -268,4 +269,35 @@ TEST_CASE("tent x plane-wave weights: series, closed form and quadrature agree",
       CHECK(std::abs(b - qb) < 1e-12);
     }
   }
+}
+
+// Issue 23 (memory budgets): the solver's estimate of one solve counts its buffers, and grows with
+// the top's nodes and the incident azimuths as the buffers do.
+TEST_CASE("the approximate solver's memory estimate counts its buffers", "[approximate][memory]") {
+  const ApproximateSolver solver(ApproximateSolver::Currents::reflected, 0.25);
+  const CrossSection small = flat_top(20000.0, 30.0), wide = flat_top(200000.0, 30.0);
+  const MemoryEstimate one = solver.estimate_memory(small, 550.0, 1, 1424);
+  const MemoryEstimate twenty = solver.estimate_memory(small, 550.0, 20, 1424);
+  const MemoryEstimate wide20 = solver.estimate_memory(wide, 550.0, 20, 1424);
+  REQUIRE_FALSE(one.parts.empty());
+  const auto part = [](const MemoryEstimate& e, const std::string& name) {
+    for (const auto& p : e.parts)
+      if (p.name == name) return p.bytes;
+    FAIL("no part " << name);
+    return 0.0;
+  };
+  const double nodes = static_cast<double>(small.top.size() - 2), verts = static_cast<double>(small.top.size());
+  // capped normalisation: 12 columns of currents and 12 of the lossless reference, 16 bytes each
+  CHECK(part(twenty, "current amplitudes") == Approx(nodes * 20 * 24 * 16 + verts * 20 * 8));
+  CHECK(part(twenty, "far fields") == Approx(20.0 * 1424 * 2 * 16));
+  CHECK(twenty.total_bytes() > 5.0 * one.total_bytes());
+  // ten times the nodes: ten times the per-node buffers; the per-direction ones (far fields, the
+  // radiator's results and accumulators) stay
+  INFO(twenty.describe() << "\n" << wide20.describe());
+  CHECK(part(wide20, "current amplitudes") == Approx(10.0 * part(twenty, "current amplitudes")).epsilon(0.01));
+  CHECK(part(wide20, "local reflection batch") == Approx(10.0 * part(twenty, "local reflection batch")).epsilon(0.01));
+  CHECK(part(wide20, "far fields") == part(twenty, "far fields"));
+  CHECK(part(wide20, "far-field radiation") > 3.0 * part(twenty, "far-field radiation"));
+  CHECK(part(wide20, "far-field radiation") < 10.0 * part(twenty, "far-field radiation"));
+  CHECK_THAT(wide20.describe(), Catch::Contains("approximate solve of 6666 top nodes x 20 incident azimuths at 550 nm"));
 }

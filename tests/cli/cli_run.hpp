@@ -8,6 +8,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 namespace plumage::cli_test {
@@ -44,6 +46,19 @@ inline std::filesystem::path fresh_scratch_path(const std::string& suite, const 
   const std::filesystem::path dir = scratch_dir(suite) / name;
   std::filesystem::remove_all(dir);
   return dir;
+}
+
+// A fresh, empty folder `name` inside a suite's scratch folder (earlier runs removed, created).
+inline std::filesystem::path fresh_scratch_dir(const std::string& suite, const std::string& name) {
+  const std::filesystem::path dir = fresh_scratch_path(suite, name);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+// A file's bytes ("" when it cannot be read).
+inline std::string file_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
 }  // namespace plumage::cli_test

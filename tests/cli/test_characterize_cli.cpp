@@ -26,18 +26,8 @@ using plumage::cli_test::run_command;
 
 namespace {
 
-fs::path scratch(const std::string& name) {
-  const fs::path dir = plumage::cli_test::fresh_scratch_path("plumage-test-characterize", name);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string bytes(const fs::path& f) {
-  std::ifstream in(f, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+fs::path scratch(const std::string& name) { return plumage::cli_test::fresh_scratch_dir("plumage-test-characterize", name); }
+std::string bytes(const fs::path& f) { return plumage::cli_test::file_bytes(f); }
 
 const std::string kConfig = std::string(PLUMAGE_SOURCE_DIR) + "/configs/species/rockdove.yaml";
 const std::string kTiny = " --fidelity preview --grid 3 --lambda-nm 400,500 --instances 3 --noise-functions 8";
@@ -71,6 +61,13 @@ TEST_CASE("characterize: shards merged are bit-identical to a single run", "[cha
   CHECK(single.output.find(" of 18 work units (") != std::string::npos);
   CHECK(bytes(dir / "single.plm").find("approx.grazing: raised in ") != std::string::npos);
   CHECK(bytes(dir / "single.plm").find("approx.grazing cells: ") != std::string::npos);
+  // merge prints the same per-code lines as the single run (where and how much).
+  const auto report = [](const std::string& output) {
+    const auto at = output.find("the material's warnings (stored in it):\n");
+    return at == std::string::npos ? std::string() : output.substr(at, output.find("\nwrote ", at) - at);
+  };
+  CHECK_THAT(report(merged.output), Catch::Contains("  approx.grazing: raised in "));
+  CHECK(report(merged.output) == report(single.output));
 
   // A missing shard: bad input (exit 2, issue 23), the count of missing groups, nothing written.
   const Result partial = run("merge " + (dir / "part1.shard").string() + " --out " + (dir / "partial.plm").string());

@@ -12,6 +12,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <thread>
 
 namespace fs = std::filesystem;
 using plumage::cli_test::Result;
@@ -23,12 +24,7 @@ const std::string kSuite = "plumage-test-hardening-budgets";
 
 std::string source(const std::string& path) { return std::string(PLUMAGE_SOURCE_DIR) + "/" + path; }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string read_text(const std::string& path) { return plumage::cli_test::file_bytes(path); }
 
 // A copy of a source config with `pattern` replaced (the replacement must happen).
 fs::path variant_of(const std::string& path, const std::string& pattern, const std::string& replacement,
@@ -190,4 +186,60 @@ TEST_CASE("long BEM steps report progress on stderr, and -q silences them", "[cl
   const Result quiet = run("-q " + args);
   REQUIRE(quiet.status == 0);
   CHECK(quiet.output.find("bem: GMRES") == std::string::npos);
+}
+
+// The pipeline solves instances in parallel, one per thread (solve_memory.hpp): a budget that holds
+// one solve but not two lowers the parallelism instead of refusing, says so, and the file is the
+// same byte for byte (each instance's far field does not depend on which thread solved it).
+TEST_CASE("simulate solves fewer instances at a time when the budget holds fewer, with the same result",
+          "[cli][budgets]") {
+  const fs::path dir = plumage::cli_test::fresh_scratch_dir(kSuite, "simulate-plan");
+  const std::string config = source("configs/validation/keratin-cylinder-bem.yaml");
+  const std::string common = " --lambda-nm 550 --instances 2 --directions full --out ";
+  // One solve's estimate, printed by a refusal: "...: estimated 52.7 MiB (...".
+  const Result refused = run("--max-memory 1 simulate " + config + common + (dir / "none.ffs").string());
+  REQUIRE(refused.status == 2);
+  std::smatch m;
+  REQUIRE(std::regex_search(refused.output, m, std::regex(R"(bem dense solve of \d+ unknowns .*: estimated ([0-9.]+) MiB)")));
+  const double one_mib = std::stod(m[1]);
+  CHECK(one_mib > 40.0);  // the dense matrix alone is 24.4 MiB, the far-field operator 20.6 MiB
+  const Result free_run = run("simulate " + config + common + (dir / "free.ffs").string());
+  REQUIRE(free_run.status == 0);
+  // Room for one solve and what the process holds (~20-40 MiB), not for two.
+  const std::string budget = std::to_string(static_cast<int>(1.4 * one_mib + 40.0)) + "MiB";
+  const Result limited = run("--max-memory " + budget + " simulate " + config + common + (dir / "limited.ffs").string());
+  INFO(limited.output);
+  REQUIRE(limited.status == 0);
+  if (std::thread::hardware_concurrency() >= 2) {
+    CHECK_THAT(limited.output, Catch::Contains("simulate: memory: 1 solve(s) at a time instead of 2"));
+  }
+  CHECK(plumage::cli_test::file_bytes(dir / "limited.ffs") == plumage::cli_test::file_bytes(dir / "free.ffs"));
+}
+
+// A 2 mm wide barbule at the default 50 px/um is a 100 000 x 30 000 pixel picture: over libpng's
+// 4 GiB raster limit, it was drawn for 108 s (10.8 GB) and then failed with exit 1, leaving the
+// .xsec and .svg behind. Now refused before anything is written, with the scale that fits, and
+// at that scale the instance is drawn with a line saying so.
+TEST_CASE("geometry refuses a picture over the PNG limit before writing, naming the scale that fits",
+          "[cli][budgets]") {
+  const fs::path wide = variant_of("configs/species/rockdove.yaml", "width_um: 20", "width_um: 2000", "rockdove-wide.yaml");
+  const fs::path dir = plumage::cli_test::fresh_scratch_path(kSuite, "geometry-wide");
+  const Timed t = timed_run("geometry " + wide.string() + " --out " + dir.string());
+  INFO(t.result.output);
+  CHECK(t.result.status == 2);
+  CHECK_THAT(t.result.output, Catch::Contains("over the PNG writer's limit") && Catch::Contains("--pixels-per-um (at most"));
+  CHECK(t.seconds < 20.0);
+  CHECK(!fs::exists(dir));
+  std::smatch m;
+  REQUIRE(std::regex_search(t.result.output, m, std::regex(R"(--pixels-per-um \(at most ([0-9.e+]+) here\))")));
+  const double fits = std::stod(m[1]);
+  CHECK(fits < 50.0);
+  // Well inside the limit (1/8 of the scale that fits: 1/64 of the raster, 2.2e7 pixels), drawn
+  // with a line saying which picture is being drawn.
+  const Result drawn = run("geometry " + wide.string() + " --out " + dir.string() + " --no-svg --pixels-per-um " +
+                           std::to_string(fits / 8.0));
+  INFO(drawn.output);
+  CHECK(drawn.status == 0);
+  CHECK_THAT(drawn.output, Catch::Contains("geometry: drawing rockdove-forest-0.png: PNG picture of"));
+  CHECK(fs::exists(dir / "rockdove-forest-0.png"));
 }

@@ -26,17 +26,10 @@ using plumage::cli_test::run;
 namespace {
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = plumage::cli_test::fresh_scratch_path("plumage-test-hardening-readers", name);
-  fs::create_directories(dir);
-  return dir;
+  return plumage::cli_test::fresh_scratch_dir("plumage-test-hardening-readers", name);
 }
-
-std::string bytes(const fs::path& f) {
-  std::ifstream in(f, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using plumage::cli_test::file_bytes;
+std::string bytes(const fs::path& f) { return file_bytes(f); }
 
 void write_bytes(const fs::path& f, const std::string& data) { std::ofstream(f, std::ios::binary | std::ios::trunc) << data; }
 

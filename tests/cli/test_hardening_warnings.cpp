@@ -28,10 +28,7 @@ namespace {
 const std::string kSuite = "plumage-test-hardening-warnings";
 const std::string kSource = PLUMAGE_SOURCE_DIR;
 
-std::string bytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
+std::string bytes(const fs::path& file) { return plumage::cli_test::file_bytes(file); }
 
 fs::path write_file(const std::string& name, const std::string& text) {
   const fs::path file = plumage::cli_test::scratch_dir(kSuite) / name;

@@ -34,5 +34,8 @@ void write_cross_section_svg(std::ostream& out, const CrossSection& section, con
 Image render_cross_section(const CrossSection& section, const SvgOptions& options = {});
 // The raster's memory (what render_cross_section checks first).
 MemoryEstimate estimate_picture_memory(const CrossSection& section, const SvgOptions& options = {});
+// Refuses (MemoryBudgetError, exit status 2) a picture over the PNG writer's 4 GiB raster limit,
+// naming the --pixels-per-um that would fit.
+void check_picture_size(const CrossSection& section, const SvgOptions& options = {});
 
 }  // namespace plumage

@@ -257,12 +257,33 @@ MemoryEstimate estimate_picture_memory(const CrossSection& cs, const SvgOptions&
   MemoryEstimate e;
   e.job = "PNG picture of " + cs.label + ": " + std::to_string(std::lround(std::min(w, 1e18))) + " x " +
           std::to_string(std::lround(std::min(h, 1e18))) + " pixels";
-  e.add("RGB raster and PNG rows", 2.0 * 3.0 * w * h);
+  // The raster, write_png's RGB copy, and the encoded bytes (at most about the raw size).
+  e.add("RGB raster, its copy and the encoded PNG", 3.0 * 3.0 * w * h);
   e.lower_with = {"--pixels-per-um", "--window-um", "--no-png"};
   return e;
 }
 
+// libpng's simplified writer (png_image_write_to_memory) refuses a raster of more than 2^32 − 1
+// bytes ("memory image too large"), after the whole picture has been drawn: a 2 mm wide barbule at
+// 50 px/um (100 000 x 30 000 pixels, the arc's height grows with the width) took 108 s and 10.8 GB
+// to fail so. Checked before drawing, with the scale that would fit.
+void check_picture_size(const CrossSection& cs, const SvgOptions& o) {
+  constexpr double kMaxRasterBytes = 4294967295.0;
+  const auto [x0, x1, zmin, zmax, margin, panel, panels] = picture_frame(cs, o);
+  const double s = o.pixels_per_um / 1000.0;
+  const double w = std::max(1.0, (x1 - x0) * s), h = std::max(1.0, panel * panels * s);
+  if (3.0 * w * h <= kMaxRasterBytes) return;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "PNG picture of %s: %.0f x %.0f pixels at %g px/um is over the PNG writer's limit of 4 GiB of "
+                "raster; lower it with --pixels-per-um (at most %.3g here), --window-um, or --no-png",
+                cs.label.c_str(), std::min(w, 1e18), std::min(h, 1e18), o.pixels_per_um,
+                0.99 * o.pixels_per_um * std::sqrt(kMaxRasterBytes / (3.0 * w * h)));
+  throw MemoryBudgetError(text);
+}
+
 Image render_cross_section(const CrossSection& cs, const SvgOptions& o) {
+  check_picture_size(cs, o);
   check_memory(estimate_picture_memory(cs, o));
   const auto [x0, x1, zmin, zmax, margin, panel, panels] = picture_frame(cs, o);
   const double s = o.pixels_per_um / 1000.0;

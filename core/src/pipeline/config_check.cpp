@@ -46,14 +46,14 @@ bool collect(ConfigCheck& c, const std::function<void()>& step) {
 
 // The memory of the run's solves, as `simulate` and `characterize` plan them before any work
 // (solve_memory.hpp: instance 0 at the shortest and the longest wavelength, the incident grid's
-// azimuths per solve, the pattern's and projected outgoing directions): refused when a single
-// solve does not fit; a note when fewer instances than threads can be solved at a time.
+// azimuths per solve, the pattern's and projected outgoing directions, a characterisation group's
+// far fields): refused when a single solve and those do not fit; a note when fewer instances than threads can be solved at a time.
 void check_solver_memory(const SpeciesConfig& config) {
   const SimulationSettings& sim = config.simulation;
-  plan_parallel_solves(config, sim.wavelengths_nm, static_cast<std::size_t>(sim.incident_grid),
-                       pattern_directions(sim.pattern_samples).phi_o_rad.size() +
-                           projected_directions(0.0, sim.projected_samples).phi_o_rad.size(),
-                       sim.instances, "check");
+  const std::size_t n_phi_o = pattern_directions(sim.pattern_samples).phi_o_rad.size() +
+                              projected_directions(0.0, sim.projected_samples).phi_o_rad.size();
+  plan_parallel_solves(config, sim.wavelengths_nm, static_cast<std::size_t>(sim.incident_grid), n_phi_o, sim.instances,
+                       far_field_bytes(static_cast<double>(sim.incident_grid) * sim.instances, n_phi_o), "check");
 }
 
 // Every variant by name (the default too, which load_species_config checks against `variants:`

@@ -10,7 +10,7 @@
 namespace plumage {
 
 SolvePlan plan_parallel_solves(const SpeciesConfig& config, std::span<const double> lambdas_nm, std::size_t n_phi_i,
-                               std::size_t n_phi_o, int instances, const char* what) {
+                               std::size_t n_phi_o, int instances, double results_bytes, const char* what) {
   const int threads = std::max(1, tbb::this_task_arena::max_concurrency());
   SolvePlan plan;
   plan.parallel = std::max(1, std::min(instances, threads));
@@ -23,9 +23,14 @@ SolvePlan plan_parallel_solves(const SpeciesConfig& config, std::span<const doub
   }
   if (plan.per_solve.parts.empty()) return plan;
   const MemoryAvailability available = memory_available();
-  check_memory(plan.per_solve, available);  // one solve must fit
+  // The results and one solve must fit.
+  MemoryEstimate run = plan.per_solve;
+  run.job = std::string(what) + ": the run's far fields and one " + plan.per_solve.job;
+  run.add("far fields of the run", results_bytes);
+  check_memory(run, available);
   const double one = std::max(1.0, plan.per_solve.total_bytes());
-  const int fit = static_cast<int>(std::min<double>(plan.parallel, std::floor(static_cast<double>(available.bytes) / one)));
+  const double room = static_cast<double>(available.bytes) - results_bytes;
+  const int fit = static_cast<int>(std::min<double>(plan.parallel, std::floor(room / one)));
   if (fit < plan.parallel) {
     report_step(std::string(what) + ": memory", 0, 0,
                 std::to_string(fit) + " solve(s) at a time instead of " + std::to_string(plan.parallel) + ": " +

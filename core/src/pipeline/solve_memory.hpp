@@ -24,10 +24,16 @@ struct SolvePlan {
   MemoryEstimate per_solve;      // the largest single-solve estimate (no parts: nothing large)
 };
 
-// Throws MemoryBudgetError when one solve does not fit. `what` names the command in the note
-// printed when the parallelism is lowered ("simulate", "characterize").
+// `results_bytes`: what the run accumulates beside the solves (simulate: every unit's far fields;
+// characterize: a group's). Throws MemoryBudgetError when the results and one solve do not fit.
+// `what` names the command in the note printed when the parallelism is lowered ("simulate",
+// "characterize").
 SolvePlan plan_parallel_solves(const SpeciesConfig& config, std::span<const double> lambdas_nm, std::size_t n_phi_i,
-                               std::size_t n_phi_o, int instances, const char* what);
+                               std::size_t n_phi_o, int instances, double results_bytes, const char* what);
+
+// Bytes of `count` far fields of `n_phi_o` directions (FarField: the azimuths and two complex
+// polarisation components per direction).
+inline double far_field_bytes(double count, std::size_t n_phi_o) { return count * static_cast<double>(n_phi_o) * 40.0; }
 
 // Runs body() with at most plan.parallel threads (a oneTBB arena), or as is when that is all of them.
 void run_with_plan(const SolvePlan& plan, const std::function<void()>& body);

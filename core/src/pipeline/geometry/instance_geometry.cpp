@@ -5,6 +5,7 @@
 #include "plumage/cross_section_io.hpp"
 #include "plumage/image.hpp"
 #include "plumage/instance_geometry.hpp"
+#include "plumage/memory_budget.hpp"
 
 namespace plumage {
 
@@ -27,7 +28,9 @@ SvgOptions svg_options(const CrossSectionPictures& pictures) {
 }  // namespace
 
 void check_cross_section_pictures(const CrossSection& section, const CrossSectionPictures& pictures) {
-  if (pictures.png) check_memory(estimate_picture_memory(section, svg_options(pictures)));
+  if (!pictures.png) return;
+  check_picture_size(section, svg_options(pictures));
+  check_memory(estimate_picture_memory(section, svg_options(pictures)));
 }
 
 void write_cross_section_files(const CrossSection& section, const std::filesystem::path& base,
@@ -38,7 +41,13 @@ void write_cross_section_files(const CrossSection& section, const std::filesyste
   if (pictures.svg) {
     write_file_atomically(base.string() + ".svg", [&](std::ostream& s) { write_cross_section_svg(s, section, options); });
   }
-  if (pictures.png) write_png(render_cross_section(section, options), base.string() + ".png");
+  if (pictures.png) {
+    // A wide barbule's picture is the long step of `plumage geometry` (seconds per 1e8 pixels
+    // drawn and encoded): say which one is being drawn (plumage/memory_budget.hpp, report_step).
+    const MemoryEstimate e = estimate_picture_memory(section, options);
+    if (e.total_bytes() > 1e8) report_step("geometry: drawing " + base.filename().string() + ".png", 0, 0, e.job);
+    write_png(render_cross_section(section, options), base.string() + ".png");
+  }
 }
 
 }  // namespace plumage

@@ -161,7 +161,9 @@ FarFieldSet simulate(const SpeciesConfig& config, const SimulationRequest& reque
   const std::size_t n_phi_o = full ? static_cast<std::size_t>(kFullCircleSamples)
                                    : pattern_directions(sim.pattern_samples).phi_o_rad.size() +
                                          projected_directions(0.0, sim.projected_samples).phi_o_rad.size();
-  const SolvePlan plan = plan_parallel_solves(config, lambdas, 1, n_phi_o, instances, "simulate");
+  const double units = static_cast<double>(lambdas.size() * request.theta_deg.size() * request.phi_deg.size());
+  const SolvePlan plan =
+      plan_parallel_solves(config, lambdas, 1, n_phi_o, instances, far_field_bytes(units * instances, n_phi_o), "simulate");
 
   FarFieldSet set;
   set.metadata = set_metadata(config, instances, full);
