@@ -35,6 +35,9 @@ MemoryEstimate FdtdTableBuilder::estimate_memory(const CrystalCell& cell, const 
   e.add("Lorentz sums and permittivities", grids * cells * 120.0);
   e.add("Lorentz poles (" + std::to_string(poles) + ")", grids * cells * 168.0 * static_cast<double>(poles));
   e.add("transmission DFTs", grids * 4.0 * 16.0 * static_cast<double>(grid.lambda_nm.size()) * o.nx);
+  // The worker threads' touched stacks and per-thread allocator arenas: the measured peaks of the
+  // preview cells were 0.3-0.7 MiB above the other parts at 2 threads (docs/benchmarks.md).
+  e.add("worker threads", 512.0 * 1024.0 * o.threads);
   e.add("table and samples", 64.0 * static_cast<double>(grid.lambda_nm.size() * grid.cos_theta.size() * grid.cos_phi.size()) *
                                  (1.0 + o.grazing_anchors));
   e.lower_with = {"resolution_nm (now " + std::to_string(1000.0 * h_um).substr(0, 6) + " nm: a coarser grid)",
