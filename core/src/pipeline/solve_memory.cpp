@@ -37,12 +37,13 @@ SolvePlan plan_parallel_solves(const SpeciesConfig& config, std::span<const doub
                     plan.per_solve.describe() + " each, " + format_bytes(static_cast<double>(available.bytes)) +
                     " available (" + available.source + ")");
     plan.parallel = std::max(1, fit);
+    plan.lowered = true;
   }
   return plan;
 }
 
 void run_with_plan(const SolvePlan& plan, const std::function<void()>& body) {
-  if (plan.parallel >= tbb::this_task_arena::max_concurrency()) {
+  if (!plan.lowered) {
     body();
     return;
   }

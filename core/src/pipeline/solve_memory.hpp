@@ -22,6 +22,7 @@ namespace plumage {
 struct SolvePlan {
   int parallel = 1;              // instances solved at a time
   MemoryEstimate per_solve;      // the largest single-solve estimate (no parts: nothing large)
+  bool lowered = false;          // fewer than min(instances, threads) because of the budget
 };
 
 // `results_bytes`: what the run accumulates beside the solves (simulate: every unit's far fields;
@@ -35,7 +36,8 @@ SolvePlan plan_parallel_solves(const SpeciesConfig& config, std::span<const doub
 // polarisation components per direction).
 inline double far_field_bytes(double count, std::size_t n_phi_o) { return count * static_cast<double>(n_phi_o) * 40.0; }
 
-// Runs body() with at most plan.parallel threads (a oneTBB arena), or as is when that is all of them.
+// Runs body() with at most plan.parallel threads (a oneTBB arena) when the budget lowered it, else
+// as is (a run of fewer instances than threads keeps every thread for the solver's own loops).
 void run_with_plan(const SolvePlan& plan, const std::function<void()>& body);
 
 }  // namespace plumage
