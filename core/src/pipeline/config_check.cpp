@@ -13,7 +13,6 @@
 #include "plumage/crystal_cell.hpp"
 #include "pipeline/solve_memory.hpp"
 #include "plumage/error.hpp"
-#include "plumage/far_field.hpp"
 #include "plumage/memory_budget.hpp"
 #include "plumage/render_job.hpp"
 #include "plumage/species_config.hpp"
@@ -47,11 +46,11 @@ bool collect(ConfigCheck& c, const std::function<void()>& step) {
 // The memory of the run's solves, as `simulate` and `characterize` plan them before any work
 // (solve_memory.hpp: instance 0 at the shortest and the longest wavelength, the incident grid's
 // azimuths per solve, the pattern's and projected outgoing directions, a characterisation group's
-// far fields): refused when a single solve and those do not fit; a note when fewer instances than threads can be solved at a time.
+// far fields): refused when a single solve and those do not fit; a note when fewer instances
+// than threads can be solved at a time.
 void check_solver_memory(const SpeciesConfig& config) {
   const SimulationSettings& sim = config.simulation;
-  const std::size_t n_phi_o = pattern_directions(sim.pattern_samples).phi_o_rad.size() +
-                              projected_directions(0.0, sim.projected_samples).phi_o_rad.size();
+  const std::size_t n_phi_o = cone_directions(sim.pattern_samples, sim.projected_samples);
   plan_parallel_solves(config, sim.wavelengths_nm, static_cast<std::size_t>(sim.incident_grid), n_phi_o, sim.instances,
                        far_field_bytes(static_cast<double>(sim.incident_grid) * sim.instances, n_phi_o), "check");
 }

@@ -14,6 +14,7 @@
 #include <functional>
 #include <span>
 
+#include "plumage/far_field.hpp"
 #include "plumage/memory_budget.hpp"
 #include "plumage/species_config.hpp"
 
@@ -31,6 +32,12 @@ struct SolvePlan {
 // "characterize").
 SolvePlan plan_parallel_solves(const SpeciesConfig& config, std::span<const double> lambdas_nm, std::size_t n_phi_i,
                                std::size_t n_phi_o, int instances, double results_bytes, const char* what);
+
+// Outgoing directions of a solve on the specular cone: the pattern's and the projected ones.
+inline std::size_t cone_directions(int pattern_samples, int projected_samples) {
+  return pattern_directions(pattern_samples).phi_o_rad.size() +
+         projected_directions(0.0, projected_samples).phi_o_rad.size();
+}
 
 // Bytes of `count` far fields of `n_phi_o` directions (FarField: the azimuths and two complex
 // polarisation components per direction).

@@ -139,8 +139,7 @@ void compute_groups(const SpeciesConfig& config, const CharacterizeSettings& s, 
     prepared = prepare_instances(config, s);
     // Before the solves, with the tables and the prepared instances resident: how many instances
     // the budget lets us solve at a time (solve_memory.hpp). `plumage check` runs the same plan.
-    const std::size_t n_phi_o = pattern_directions(s.pattern_samples).phi_o_rad.size() +
-                                projected_directions(0.0, s.projected_samples).phi_o_rad.size();
+    const std::size_t n_phi_o = cone_directions(s.pattern_samples, s.projected_samples);
     plan = plan_parallel_solves(config, s.lambda_nm, static_cast<std::size_t>(s.grid), n_phi_o, s.instances,
                                 far_field_bytes(static_cast<double>(s.grid) * s.instances, n_phi_o), "characterize");
   }

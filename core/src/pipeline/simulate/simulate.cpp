@@ -159,8 +159,7 @@ FarFieldSet simulate(const SpeciesConfig& config, const SimulationRequest& reque
   // Before the solves, with the tables and the prepared instances resident: how many instances
   // the budget lets us solve at a time (solve_memory.hpp). `plumage check` runs the same plan.
   const std::size_t n_phi_o = full ? static_cast<std::size_t>(kFullCircleSamples)
-                                   : pattern_directions(sim.pattern_samples).phi_o_rad.size() +
-                                         projected_directions(0.0, sim.projected_samples).phi_o_rad.size();
+                                   : cone_directions(sim.pattern_samples, sim.projected_samples);
   const double units = static_cast<double>(lambdas.size() * request.theta_deg.size() * request.phi_deg.size());
   const SolvePlan plan =
       plan_parallel_solves(config, lambdas, 1, n_phi_o, instances, far_field_bytes(units * instances, n_phi_o), "simulate");
