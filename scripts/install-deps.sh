@@ -8,6 +8,7 @@ packages=(
   libeigen3-dev libfftw3-dev libboost-dev libboost-filesystem-dev libyaml-cpp-dev
   libceres-dev libopenexr-dev libembree-dev catch2 libtbb-dev libcli11-dev
   libopenmpi-dev libpng-dev libstb-dev python3-matplotlib
+  pybind11-dev python3-dev python3-numpy python3-pytest   # the Python package (python/)
   libflint-arb-dev libflint-dev   # Arb: rigorous reference for the BEM's Hankel functions (tests)
   clang libclang-rt-14-dev       # libFuzzer + ASan/UBSan for the fuzz harnesses (fuzz/, make fuzz)
 )

@@ -1,5 +1,7 @@
 #include "plumage/data_paths.hpp"
 
+#include <dlfcn.h>
+
 #include <cstdlib>
 #include <vector>
 
@@ -11,6 +13,15 @@ namespace fs = std::filesystem;
 
 fs::path executable_path() { return fs::read_symlink("/proc/self/exe"); }
 
+fs::path core_library_path() {
+  Dl_info info{};
+  // Any function of this library names the file it was loaded from.
+  if (dladdr(reinterpret_cast<const void*>(&core_library_path), &info) == 0 || !info.dli_fname) return {};
+  std::error_code ec;
+  fs::path path = fs::weakly_canonical(info.dli_fname, ec);
+  return ec ? fs::path(info.dli_fname) : path;
+}
+
 fs::path data_directory() {
   std::vector<fs::path> candidates;
   if (const char* env = std::getenv("PLUMAGE_DATA_DIR")) candidates.emplace_back(env);
@@ -18,6 +29,8 @@ fs::path data_directory() {
     candidates.push_back(executable_path().parent_path() / ".." / "share" / "plumage");
   } catch (const std::exception&) {
   }
+  if (const fs::path core = core_library_path(); !core.empty())
+    candidates.push_back(core.parent_path() / ".." / "share" / "plumage");
 #ifdef PLUMAGE_INSTALL_DATA_DIR
   candidates.emplace_back(PLUMAGE_INSTALL_DATA_DIR);
 #endif

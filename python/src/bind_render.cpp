@@ -1,0 +1,8 @@
+// Python bindings: render (issue 24; being written).
+#include "py_common.hpp"
+
+namespace plumage::python {
+
+void bind_render(py::module_& m) { (void)m; }
+
+}  // namespace plumage::python
