@@ -142,6 +142,7 @@ std::shared_ptr<PyComparisonRun> run(const PyComparison& loaded, const py::objec
   const ProgressFn report = progress_from_python(progress);
   auto out = std::make_shared<PyComparisonRun>();
   out->comparison = selected;
+  begin_run();
   py::gil_scoped_release release;
   // The command's order: select, segment, prepare, run, compare.
   select_in_comparison(selected->comparison, selection);

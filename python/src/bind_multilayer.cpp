@@ -108,13 +108,16 @@ py::list spectra(const py::handle& species, const py::handle& lambda_nm, const p
   const std::vector<double> lambdas = as_doubles(lambda_nm, "lambda_nm");
   const std::vector<double> thetas = thetas_argument(theta_deg, 90.0, true);
   const PreparationOptions preparation = preparation_from(tables, progress);
+  // Converted with the GIL held: nothing Python is touched below.
+  const auto csv_file = csv.is_none() ? std::filesystem::path() : csv.cast<std::filesystem::path>();
+  const auto plot_file = plot.is_none() ? std::filesystem::path() : plot.cast<std::filesystem::path>();
   std::vector<StackSpectrum> result;
   {
     py::gil_scoped_release release;
     result = nominal_stack_spectra(configs, lambdas, thetas, preparation);
     if (result.empty()) throw Error("none of the species has a nominal_stack to draw");
-    if (!csv.is_none()) write_text_atomically(csv.cast<std::filesystem::path>(), stack_spectra_csv(result));
-    if (!plot.is_none()) draw_stack_spectra(result, plot.cast<std::filesystem::path>());
+    if (!csv_file.empty()) write_text_atomically(csv_file, stack_spectra_csv(result));
+    if (!plot_file.empty()) draw_stack_spectra(result, plot_file);
   }
   py::list out;
   const auto nt = static_cast<py::ssize_t>(thetas.size()), nl = static_cast<py::ssize_t>(lambdas.size());

@@ -159,6 +159,7 @@ std::shared_ptr<FarFieldSet> simulate_species(const Species& species, const py::
   callbacks.started = [report](std::size_t total) { report(0, total, "work units"); };
   callbacks.progress = [report](std::size_t done, std::size_t total) { report(done, total, "work units"); };
   auto out = std::make_shared<FarFieldSet>();
+  begin_run();
   py::gil_scoped_release release;
   *out = simulate(species.config, request, callbacks);
   return out;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 
 namespace plumage::python {
@@ -16,6 +17,8 @@ PreparationOptions preparation_from(const std::string& tables, const py::object&
   options.progress = progress_from_python(progress);
   return options;
 }
+
+void begin_run() { diagnostics().clear(); }
 
 py::array complex_view_of(const std::complex<double>* data, std::vector<py::ssize_t> shape, py::handle owner) {
   std::vector<py::ssize_t> strides(shape.size());

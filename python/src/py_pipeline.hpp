@@ -19,6 +19,11 @@ namespace plumage::python {
 // library's PreparationOptions; ValueError for another `tables`.
 PreparationOptions preparation_from(const std::string& tables, const py::object& progress);
 
+// The start of a run, as the command's start: the process's warnings (diagnostics.hpp) are
+// cleared, so that a result's metadata carries its own run's warnings only (a Python session
+// makes many runs; the command makes one).
+void begin_run();
+
 // A read-only numpy view of complex doubles (C order) owned by `owner`: no copy.
 py::array complex_view_of(const std::complex<double>* data, std::vector<py::ssize_t> shape, py::handle owner);
 
