@@ -178,7 +178,9 @@ void bind_simulate(py::module_& m) {
         "phi_deg in (-90, 90) (numbers or 1-D); instances 0: the config's; directions 'pattern' or "
         "'full'; tables as --tables. progress(done, total, what) after each work unit (what = 'work "
         "units') and during preparation; an exception it raises, or Ctrl-C, stops the run. "
-        "ConfigError at the flag (file '--theta-deg', '--lambda-nm', ...) for a request out of range.");
+        "ConfigError at the flag (file '--theta-deg', '--lambda-nm', ...) for a request out of range. "
+        "The process's warnings are cleared first, as at a command's start: the set's metadata "
+        "carries this run's warnings only.");
   m.def("read_far_field_set",
         [](const std::filesystem::path& file) {
           auto out = std::make_shared<FarFieldSet>();

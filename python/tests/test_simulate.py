@@ -1,6 +1,9 @@
 """Far fields from Python: simulate() writes the same .ffs bytes as `plumage simulate`, its arrays
 are views of the set, progress reaches a callable that can stop the run, and bad requests raise
 ConfigError at the command's flag."""
+import os
+import signal
+
 import numpy as np
 import pytest
 
@@ -83,6 +86,15 @@ def test_progress_and_stopping(rockdove):
 
     with pytest.raises(Stop):
         plumage.simulate(rockdove, **REQUEST, progress=stop)
+
+
+def test_ctrl_c_stops_the_run(rockdove):
+    def ctrl_c(done, total, what):
+        if done == 1:
+            os.kill(os.getpid(), signal.SIGINT)  # as a Ctrl-C arriving during the run
+
+    with pytest.raises(KeyboardInterrupt):
+        plumage.simulate(rockdove, **REQUEST, progress=ctrl_c)
 
 
 def test_cone_colours_picture(rockdove, tmp_path):
