@@ -180,7 +180,8 @@ instances (paper §5, §7.1). Made by plumage.load_material or plumage.character
            "Paper Fig. 10 as arrays (`plumage brdf plot`): per incident (theta_deg, phi_deg) a row of "
            "panels, the mean BRDF then instances 0 … instances−1, over the unit disk of (wo_x, wo_y); "
            "pixel = f·cos θ_o over the bins → XYZ under D65. A dict: xyz (rows, 1+instances, size, "
-           "size, 3) NaN outside the disk, srgb8 (same shape, uint8: XYZ × exposure → sRGB, clipped), "
+           "size, 3), pixel [r, c] at (wo_x, wo_y) = (2(c+0.5)/size − 1, 1 − 2(r+0.5)/size) (row 0 on top, "
+           "+y), NaN outside the disk; srgb8 (same shape, uint8: XYZ × exposure → sRGB, clipped), "
            "exposure (0 asked: the 99.5th percentile of the mean panels' luminance maps to 1), "
            "automatic_exposure.")
       .def("plot_hemispheres",
