@@ -56,7 +56,7 @@ fuzz: build
 # reports its own allocations as leaks); see docs/validation.md.
 SANITIZE_BUILD ?= build-sanitize
 test-sanitize: deps
-	@cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Release -DPLUMAGE_SANITIZE=ON -DPLUMAGE_FUZZ=OFF \
+	@cmake -S . -B $(SANITIZE_BUILD) -DCMAKE_BUILD_TYPE=Release -DPLUMAGE_SANITIZE=ON -DPLUMAGE_FUZZ=OFF -DPLUMAGE_PYTHON=OFF \
 	  > $(SANITIZE_BUILD).configure.log 2>&1 || (cat $(SANITIZE_BUILD).configure.log; exit 1)
 	@rm -f $(SANITIZE_BUILD).configure.log
 	cmake --build $(SANITIZE_BUILD) -j $(JOBS)

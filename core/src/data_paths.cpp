@@ -25,12 +25,12 @@ fs::path core_library_path() {
 fs::path data_directory() {
   std::vector<fs::path> candidates;
   if (const char* env = std::getenv("PLUMAGE_DATA_DIR")) candidates.emplace_back(env);
+  if (const fs::path core = core_library_path(); !core.empty())
+    candidates.push_back(core.parent_path() / ".." / "share" / "plumage");
   try {
     candidates.push_back(executable_path().parent_path() / ".." / "share" / "plumage");
   } catch (const std::exception&) {
   }
-  if (const fs::path core = core_library_path(); !core.empty())
-    candidates.push_back(core.parent_path() / ".." / "share" / "plumage");
 #ifdef PLUMAGE_INSTALL_DATA_DIR
   candidates.emplace_back(PLUMAGE_INSTALL_DATA_DIR);
 #endif

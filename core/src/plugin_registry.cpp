@@ -73,13 +73,14 @@ std::vector<fs::path> PluginRegistry::search_path(const std::vector<fs::path>& e
       if (!item.empty()) dirs.emplace_back(item);
     }
   }
+  // Beside the core library first: the plug-ins built with it, also in a process that is not
+  // `plumage` (python3), whose own prefix may hold another plumage.
+  if (const fs::path core = core_library_path(); !core.empty())
+    dirs.push_back(core.parent_path() / "plumage" / "plugins");
   try {
     dirs.push_back(executable_path().parent_path() / ".." / "lib" / "plumage" / "plugins");
   } catch (const std::exception&) {
   }
-  // Beside the core library: where a process that is not `plumage` (python3) finds them.
-  if (const fs::path core = core_library_path(); !core.empty())
-    dirs.push_back(core.parent_path() / "plumage" / "plugins");
 #ifdef PLUMAGE_INSTALL_PLUGIN_DIR
   dirs.emplace_back(PLUMAGE_INSTALL_PLUGIN_DIR);
 #endif

@@ -2,9 +2,12 @@
 // against (`plumage --max-memory`) and the sink of long steps' progress (the command prints it on
 // stderr; from Python it goes to a callable, or nowhere).
 #include "plumage/data_paths.hpp"
+#include "plumage/diagnostics.hpp"
 #include "plumage/memory_budget.hpp"
 #include "plumage/version.hpp"
 #include "py_common.hpp"
+
+#include <iostream>
 
 namespace plumage::python {
 
@@ -40,6 +43,11 @@ void bind_session(py::module_& m) {
         py::arg("callable"),
         "callable(step, done, total, detail) for the long steps inside a computation (a BEM "
         "factorisation, a table build); total 0 marks a status line. None: silent (the default).");
+  m.def("set_warning_echo",
+        [](bool on) { diagnostics().set_echo(on ? &std::cerr : nullptr); },
+        py::arg("on"),
+        "Whether the first raise of each warning code is printed on stderr (default True; the "
+        "command's -q turns it off). Results carry their warnings either way (metadata, .warnings).");
   m.def("data_directory", [] { return data_directory(); }, "Where the shipped data (CIE tables, scripts) is found.");
   m.attr("__version__") = kVersionString;
 }

@@ -5,6 +5,7 @@
 
 #include "hostile_plugins.hpp"
 #include "plumage/config_document.hpp"
+#include "plumage/data_paths.hpp"
 #include "plumage/local_reflection.hpp"
 #include "plumage/plugin_registry.hpp"
 #include "plumage/version.hpp"
@@ -135,7 +136,8 @@ TEST_CASE("scanning a folder records problems and keeps the good plug-ins", "[pl
   CHECK(registry.entries().size() == 2);
 }
 
-TEST_CASE("search path order: explicit, environment, beside the executable, prefix", "[plugins]") {
+TEST_CASE("search path order: explicit, environment, beside the core library, beside the executable, prefix",
+          "[plugins]") {
   ::setenv("PLUMAGE_PLUGIN_PATH", "/env/one:/env/two", 1);
   auto dirs = PluginRegistry::search_path({"/explicit"});
   ::unsetenv("PLUMAGE_PLUGIN_PATH");
@@ -143,6 +145,8 @@ TEST_CASE("search path order: explicit, environment, beside the executable, pref
   CHECK(dirs[0] == "/explicit");
   CHECK(dirs[1] == "/env/one");
   CHECK(dirs[2] == "/env/two");
+  // The test program links libplumage_core.so from <build>/lib: its plug-in folder comes first.
+  CHECK(dirs[3] == std::filesystem::weakly_canonical(core_library_path().parent_path() / "plumage" / "plugins"));
   CHECK(dirs[3].string().ends_with("lib/plumage/plugins"));
 }
 

@@ -5,9 +5,10 @@
 
 namespace plumage {
 
-// $PLUMAGE_DATA_DIR, else <folder of the executable>/../share/plumage, else <folder of
-// libplumage_core.so>/../share/plumage (a program that is not ours, e.g. python3 importing the
-// package), else the install prefix's share/plumage, else the source tree's data folder. Throws Error naming every place it looked.
+// $PLUMAGE_DATA_DIR, else <folder of libplumage_core.so>/../share/plumage (right also in a
+// program that is not ours, e.g. python3 importing the package), else <folder of the
+// executable>/../share/plumage, else the install prefix's share/plumage, else the source tree's
+// data folder. Throws Error naming every place it looked.
 std::filesystem::path data_directory();
 
 // Absolute path of the running executable (from /proc/self/exe).

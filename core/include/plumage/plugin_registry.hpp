@@ -34,8 +34,8 @@ class PluginRegistry {
   PluginRegistry& operator=(PluginRegistry&&) noexcept;
 
   // The folders searched, in order: explicit ones (--plugin-path), $PLUMAGE_PLUGIN_PATH
-  // (colon-separated), <folder of the executable>/../lib/plumage/plugins, <folder of
-  // libplumage_core.so>/plumage/plugins (python3 is not our executable), and
+  // (colon-separated), <folder of libplumage_core.so>/plumage/plugins (also right in python3,
+  // which is not our executable), <folder of the executable>/../lib/plumage/plugins, and
   // <install prefix>/lib/plumage/plugins. Never the current directory implicitly.
   static std::vector<std::filesystem::path> search_path(
       const std::vector<std::filesystem::path>& explicit_dirs);
