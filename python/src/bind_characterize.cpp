@@ -11,6 +11,7 @@
 #include "plumage/config_document.hpp"
 #include "plumage/param_table.hpp"
 #include "py_material.hpp"
+#include "py_pipeline.hpp"
 
 namespace plumage::python {
 
@@ -58,15 +59,6 @@ py::dict settings_dict(const CharacterizeSettings& s) {
   return d;
 }
 
-PreparationOptions preparation(const std::string& tables) {
-  PreparationOptions o;
-  if (tables == "build") o.tables = PreparationOptions::Tables::build;
-  else if (tables == "preview") o.tables = PreparationOptions::Tables::preview;
-  else if (tables == "never") o.tables = PreparationOptions::Tables::never;
-  else throw py::value_error("tables: expected 'build', 'preview' or 'never', not '" + tables + "'");
-  return o;
-}
-
 std::optional<CharacterizeShard> shard_of(const py::object& shard) {
   if (shard.is_none()) return std::nullopt;
   const auto pair = py::cast<std::vector<int>>(shard);
@@ -86,7 +78,7 @@ py::dict run_characterize(const Species& species, const std::filesystem::path& o
   if (other_journal == "restart") options.other_journal = CharacterizeOptions::OtherJournal::restart;
   else if (other_journal != "refuse") throw py::value_error("other_journal: expected 'refuse' or 'restart'");
   options.diagnostics_dir = diagnostics;
-  options.preparation = preparation(tables);
+  options.preparation = preparation_from(tables, progress);  // the table build reports to it too
   options.progress = progress_from_python(progress);
   // Polled before each group: a pending Ctrl-C raises KeyboardInterrupt there (journal kept).
   options.cancelled = [] { return python_interrupt_pending(); };
@@ -98,6 +90,7 @@ py::dict run_characterize(const Species& species, const std::filesystem::path& o
     };
   }
   CharacterizeResult r;
+  begin_run();
   {
     py::gil_scoped_release release;
     r = characterize(species.config, s, out, options, plan_callback);
@@ -139,7 +132,7 @@ void bind_characterize(py::module_& m) {
 fidelity: preview | production | reference (the species file's `simulation:` keys over it).
 instances, grid, lambda_nm (nm, ascending), noise_functions, sigma: the command's overrides
 (None: the preset's). progress(done, total, what): work units after each group (what =
-'work units'); on_plan(plan dict) before the work starts. shard=(i, N), 1-based: only groups
+'work units') and the models' preparation; on_plan(plan dict) before the work starts. shard=(i, N), 1-based: only groups
 g ≡ i−1 (mod N), written as a shard file to `out` (combine with merge_shards). A journal
 `<out>.journal` of the same settings is resumed (plan['resumed'] groups); one of other settings
 raises ConfigError (other_journal='refuse') or is discarded ('restart'). diagnostics: a folder for
@@ -154,6 +147,7 @@ shard). ConfigError for bad settings (nothing written).)doc");
       "merge_shards",
       [](const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out) {
         MergeResult r;
+        begin_run();
         {
           py::gil_scoped_release release;
           r = merge_shards(shards, out);
