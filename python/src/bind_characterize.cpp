@@ -132,11 +132,12 @@ void bind_characterize(py::module_& m) {
 fidelity: preview | production | reference (the species file's `simulation:` keys over it).
 instances, grid, lambda_nm (nm, ascending), noise_functions, sigma: the command's overrides
 (None: the preset's). progress(done, total, what): work units after each group (what =
-'work units') and the models' preparation; on_plan(plan dict) before the work starts. shard=(i, N), 1-based: only groups
-g ≡ i−1 (mod N), written as a shard file to `out` (combine with merge_shards). A journal
-`<out>.journal` of the same settings is resumed (plan['resumed'] groups); one of other settings
-raises ConfigError (other_journal='refuse') or is discarded ('restart'). diagnostics: a folder for
-pattern-vs-fit pictures. tables: build | preview | never (the command's --tables).
+'work units'), and the models' preparation; on_plan(plan dict) before the work starts.
+shard=(i, N), 1-based: only groups g ≡ i−1 (mod N), written as a shard file to `out`
+(combine with merge_shards). A journal `<out>.journal` of the same settings is resumed
+(plan['resumed'] groups); one of other settings raises ConfigError (other_journal='refuse') or
+is discarded ('restart'). diagnostics: a folder for pattern-vs-fit pictures. tables: build |
+preview | never (the command's --tables).
 
 Ctrl-C, or an exception raised by progress, stops the run between groups: KeyboardInterrupt (or
 that exception), no output file, the journal kept for the next call. Returns a dict: settings,

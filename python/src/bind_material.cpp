@@ -96,14 +96,67 @@ std::string label_part(const FeatherMaterial& m, bool species) {
   return species ? m.label.substr(0, slash) : m.label.substr(slash + 1);
 }
 
+// `plumage brdf plot|check` as methods of plumage.Material.
+void add_report_methods(py::class_<Material, MaterialPtr>& material) {
+  material
+      .def("hemisphere_panels",
+           [](const MaterialPtr& s, const py::object& incidents, int instances, int size, double exposure) {
+             const HemispherePlotOptions o = plot_options(incidents, instances, size, exposure);
+             HemispherePanels p;
+             {
+               py::gil_scoped_release release;
+               p = hemisphere_panels(s->data, o);
+             }
+             return panels_dict(p);
+           },
+           py::arg("incidents") = std::vector<std::pair<double, double>>{{0, 0}, {0, -45}, {45, 0}},
+           py::arg("instances") = 2, py::arg("size") = 192, py::arg("exposure") = 0.0,
+           "Paper Fig. 10 as arrays (`plumage brdf plot`): per incident (theta_deg, phi_deg) a row of "
+           "panels, the mean BRDF then instances 0 … instances−1, over the unit disk of (wo_x, wo_y); "
+           "pixel = f·cos θ_o over the bins → XYZ under D65. A dict: xyz (rows, 1+instances, size, "
+           "size, 3), pixel [r, c] at (wo_x, wo_y) = (2(c+0.5)/size − 1, 1 − 2(r+0.5)/size) (row 0 on top, "
+           "+y), NaN outside the disk; srgb8 (same shape, uint8: XYZ × exposure → sRGB, clipped), "
+           "exposure (0 asked: the 99.5th percentile of the mean panels' luminance maps to 1), "
+           "automatic_exposure.")
+      .def("plot_hemispheres",
+           [](const MaterialPtr& s, const std::filesystem::path& out, const py::object& incidents, int instances, int size,
+              double exposure) {
+             const HemispherePlotOptions o = plot_options(incidents, instances, size, exposure);
+             py::gil_scoped_release release;
+             const HemispherePanels p = hemisphere_panels(s->data, o);
+             write_hemisphere_figure(p, o, *s->data, out);
+             return p.exposure;
+           },
+           py::arg("out"), py::arg("incidents") = std::vector<std::pair<double, double>>{{0, 0}, {0, -45}, {45, 0}},
+           py::arg("instances") = 2, py::arg("size") = 192, py::arg("exposure") = 0.0,
+           "`plumage brdf plot FILE --out PNG`: the same panels as one titled figure, written "
+           "atomically (the same bytes as the command). Returns the exposure used.")
+      .def("white_furnace",
+           [](const MaterialPtr& s, double transmission) {
+             if (!(transmission >= 0.0 && transmission <= 1.0)) throw py::value_error("transmission must be in [0, 1]");
+             FurnaceReport r;
+             {
+               py::gil_scoped_release release;
+               r = white_furnace(s->data, transmission);
+             }
+             return furnace_dict(r);
+           },
+           py::arg("transmission") = FeatherBsdfOptions{}.transmission_albedo,
+           "`plumage brdf check FILE --transmission T`: A_r + T ≤ 1 at every table entry and cell "
+           "centre of the BSDF built with transmission albedo T. A dict: bins (lambda_nm, "
+           "transmission, worst_total, material_raw, raw_over_one, clamped_nodes, clamped_centres: "
+           "arrays per bin), entries, nodes_per_bin, worst_total, worst_raw, raw_over_one, "
+           "clamped_nodes, clamped_centres, passes (the command exits 1 when False; this returns).");
+}
+
 }  // namespace
 
 void bind_material(py::module_& m) {
-  py::class_<Material, MaterialPtr>(m, "Material", R"doc(
+  py::class_<Material, MaterialPtr> material(m, "Material", R"doc(
 A feather material (.plm, docs/formats.md): per wavelength bin and incident node (cos θ_i,
 cos φ_i) = (i, j)/grid the eight fitted lobe parameters, and the noise pool of the BRDF
-instances (paper §5, §7.1). Made by plumage.load_material or plumage.characterize.)doc")
-      .def_property_readonly("file", [](const Material& s) { return s.file; }, "The .plm it was read from.")
+instances (paper §5, §7.1). Made by plumage.load_material or plumage.characterize.)doc");
+  material.def_property_readonly("file", [](const Material& s) { return s.file; }, "The .plm it was read from.")
       .def_property_readonly("label", [](const Material& s) { return s.data->label; }, "'species/variant'.")
       .def_property_readonly("species", [](const Material& s) { return label_part(*s.data, true); })
       .def_property_readonly("variant", [](const Material& s) { return label_part(*s.data, false); })
@@ -165,58 +218,12 @@ instances (paper §5, §7.1). Made by plumage.load_material or plumage.character
            py::arg("albedo_margin") = FeatherBsdfOptions{}.albedo_margin,
            "The BSDF (plumage.Bsdf) a renderer sees: requested diffuse transmission albedo, the "
            "energy budget's Gauss–Legendre strata (0: no budget, no transmission) and margin.")
-      .def("hemisphere_panels",
-           [](const MaterialPtr& s, const py::object& incidents, int instances, int size, double exposure) {
-             const HemispherePlotOptions o = plot_options(incidents, instances, size, exposure);
-             HemispherePanels p;
-             {
-               py::gil_scoped_release release;
-               p = hemisphere_panels(s->data, o);
-             }
-             return panels_dict(p);
-           },
-           py::arg("incidents") = std::vector<std::pair<double, double>>{{0, 0}, {0, -45}, {45, 0}},
-           py::arg("instances") = 2, py::arg("size") = 192, py::arg("exposure") = 0.0,
-           "Paper Fig. 10 as arrays (`plumage brdf plot`): per incident (theta_deg, phi_deg) a row of "
-           "panels, the mean BRDF then instances 0 … instances−1, over the unit disk of (wo_x, wo_y); "
-           "pixel = f·cos θ_o over the bins → XYZ under D65. A dict: xyz (rows, 1+instances, size, "
-           "size, 3), pixel [r, c] at (wo_x, wo_y) = (2(c+0.5)/size − 1, 1 − 2(r+0.5)/size) (row 0 on top, "
-           "+y), NaN outside the disk; srgb8 (same shape, uint8: XYZ × exposure → sRGB, clipped), "
-           "exposure (0 asked: the 99.5th percentile of the mean panels' luminance maps to 1), "
-           "automatic_exposure.")
-      .def("plot_hemispheres",
-           [](const MaterialPtr& s, const std::filesystem::path& out, const py::object& incidents, int instances, int size,
-              double exposure) {
-             const HemispherePlotOptions o = plot_options(incidents, instances, size, exposure);
-             py::gil_scoped_release release;
-             const HemispherePanels p = hemisphere_panels(s->data, o);
-             write_hemisphere_figure(p, o, *s->data, out);
-             return p.exposure;
-           },
-           py::arg("out"), py::arg("incidents") = std::vector<std::pair<double, double>>{{0, 0}, {0, -45}, {45, 0}},
-           py::arg("instances") = 2, py::arg("size") = 192, py::arg("exposure") = 0.0,
-           "`plumage brdf plot FILE --out PNG`: the same panels as one titled figure, written "
-           "atomically (the same bytes as the command). Returns the exposure used.")
-      .def("white_furnace",
-           [](const MaterialPtr& s, double transmission) {
-             if (!(transmission >= 0.0 && transmission <= 1.0)) throw py::value_error("transmission must be in [0, 1]");
-             FurnaceReport r;
-             {
-               py::gil_scoped_release release;
-               r = white_furnace(s->data, transmission);
-             }
-             return furnace_dict(r);
-           },
-           py::arg("transmission") = FeatherBsdfOptions{}.transmission_albedo,
-           "`plumage brdf check FILE --transmission T`: A_r + T ≤ 1 at every table entry and cell "
-           "centre of the BSDF built with transmission albedo T. A dict: bins (lambda_nm, "
-           "transmission, worst_total, material_raw, raw_over_one, clamped_nodes, clamped_centres: "
-           "arrays per bin), entries, nodes_per_bin, worst_total, worst_raw, raw_over_one, "
-           "clamped_nodes, clamped_centres, passes (the command exits 1 when False; this returns).")
       .def("__repr__", [](const Material& s) {
         return "<plumage.Material " + s.data->label + " (" + s.data->fidelity + ", " +
                std::to_string(s.data->lambda_nm.size()) + " bins, grid " + std::to_string(s.data->grid) + ")>";
       });
+
+  add_report_methods(material);
 
   m.def("load_material", &load_material, py::arg("file"),
         "Read a feather material (.plm); InputFileError for a missing, damaged or foreign file.");
