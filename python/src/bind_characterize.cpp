@@ -70,14 +70,15 @@ std::optional<CharacterizeShard> shard_of(const py::object& shard) {
 py::dict run_characterize(const Species& species, const std::filesystem::path& out, const std::string& fidelity,
                           const py::dict& overrides, const py::object& progress, const py::object& on_plan,
                           const py::object& shard, const std::string& other_journal,
-                          const std::filesystem::path& diagnostics, const std::string& tables) {
+                          const py::object& diagnostics, const std::string& tables) {
   const CharacterizeSettings s =
       characterize_settings(species.config, *species.registry->registry, fidelity, read_overrides(overrides));
   CharacterizeOptions options;
   options.shard = shard_of(shard);
   if (other_journal == "restart") options.other_journal = CharacterizeOptions::OtherJournal::restart;
   else if (other_journal != "refuse") throw py::value_error("other_journal: expected 'refuse' or 'restart'");
-  options.diagnostics_dir = diagnostics;
+  // None: no pictures (an empty path; Python's Path('') would be '.', the current folder).
+  if (!diagnostics.is_none()) options.diagnostics_dir = diagnostics.cast<std::filesystem::path>();
   options.preparation = preparation_from(tables, progress);  // the table build reports to it too
   options.progress = progress_from_python(progress);
   // Polled before each group: a pending Ctrl-C raises KeyboardInterrupt there (journal kept).
@@ -114,7 +115,7 @@ void bind_characterize(py::module_& m) {
          const py::object& instances, const py::object& grid, const py::object& lambda_nm,
          const py::object& noise_functions, const py::object& sigma, const py::object& progress,
          const py::object& on_plan, const py::object& shard, const std::string& other_journal,
-         const std::filesystem::path& diagnostics, const std::string& tables) {
+         const py::object& diagnostics, const std::string& tables) {
         py::dict overrides;
         overrides["instances"] = instances, overrides["grid"] = grid, overrides["lambda_nm"] = lambda_nm;
         overrides["noise_functions"] = noise_functions, overrides["sigma"] = sigma;
@@ -125,7 +126,7 @@ void bind_characterize(py::module_& m) {
       py::arg("instances") = py::none(), py::arg("grid") = py::none(), py::arg("lambda_nm") = py::none(),
       py::arg("noise_functions") = py::none(), py::arg("sigma") = py::none(), py::arg("progress") = py::none(),
       py::arg("on_plan") = py::none(), py::arg("shard") = py::none(), py::arg("other_journal") = "refuse",
-      py::arg("diagnostics") = std::filesystem::path(), py::arg("tables") = "build",
+      py::arg("diagnostics") = py::none(), py::arg("tables") = "build",
       R"doc(`plumage characterize CONFIG --fidelity F --out OUT`: simulate and fit a species variant
 (plumage.Species) into a feather material (.plm) — the same bytes as the command.
 
@@ -136,7 +137,7 @@ instances, grid, lambda_nm (nm, ascending), noise_functions, sigma: the command'
 shard=(i, N), 1-based: only groups g ≡ i−1 (mod N), written as a shard file to `out`
 (combine with merge_shards). A journal `<out>.journal` of the same settings is resumed
 (plan['resumed'] groups); one of other settings raises ConfigError (other_journal='refuse') or
-is discarded ('restart'). diagnostics: a folder for pattern-vs-fit pictures. tables: build |
+is discarded ('restart'). diagnostics: a folder for pattern-vs-fit pictures (None: none). tables: build |
 preview | never (the command's --tables).
 
 Ctrl-C, or an exception raised by progress, stops the run between groups: KeyboardInterrupt (or

@@ -26,8 +26,9 @@ def cli_material(plumage_cli, rockdove, flags, out):
     return out.read_bytes()
 
 
-def test_material_equals_the_commands(rockdove, tmp_path, plumage_cli):
+def test_material_equals_the_commands(rockdove, tmp_path, plumage_cli, monkeypatch):
     expected = cli_material(plumage_cli, rockdove, TINY_FLAGS, tmp_path / "cli.plm")
+    monkeypatch.chdir(tmp_path)  # nothing but the material may appear here (no diagnostics asked)
     seen, plans = [], []
     r = plumage.characterize(rockdove, tmp_path / "py.plm", "preview", **TINY,
                              progress=lambda done, total, what: seen.append((done, total, what)),
@@ -41,6 +42,10 @@ def test_material_equals_the_commands(rockdove, tmp_path, plumage_cli):
     m = r["material"]
     assert m.label == "rockdove/forest" and m.key == r["settings"]["key"] and m.fidelity == "preview"
     assert r["wall_s"] > 0 and "fit" in r["fit_summary"].lower()
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["cli.plm", "py.plm"]
+    # Diagnostics only where asked, and the same material bytes.
+    plumage.characterize(rockdove, tmp_path / "d.plm", **TINY, diagnostics=tmp_path / "diag")
+    assert (tmp_path / "diag" / "fit-summary.txt").exists() and (tmp_path / "d.plm").read_bytes() == expected
 
 
 class Stop(Exception):
