@@ -208,3 +208,13 @@ def test_repeated_calls_leak_nothing(material):
         material.lambda_nm
         material.bsdf(albedo_strata=0)
     assert rss_pages() <= 1.05 * before
+
+
+def test_cpp_bsdf_benchmark_runs(material_file, plumage_cli):
+    """`plumage bench bsdf` (the C++ reference of python/bench/bench_python.py) times both rows."""
+    text = plumage_cli("bench", "bsdf", "--material", material_file, "--samples", "20000").stdout
+    rows = [line for line in text.splitlines() if "| 20000 |" in line]
+    assert len(rows) == 2 and "mean BRDF" in rows[0] and "instance 0" in rows[1]
+    assert all(float(row.split("|")[7]) > 0 for row in rows)  # Msamples/s (CPU)
+    with pytest.raises(AssertionError, match="material"):
+        plumage_cli("bench", "bsdf")

@@ -36,9 +36,9 @@ const ParamTable<BsdfBenchParams>& bsdf_bench_params() {
   static const auto table =
       ParamTable<BsdfBenchParams>{}
           .text("material", &BsdfBenchParams::material, required, "feather material (.plm) to evaluate")
-          .integer("samples", &BsdfBenchParams::samples, "1", 1000000, Limits::at_least(1), "(ω_o, λ) samples per pass")
-          .number("theta_deg", &BsdfBenchParams::theta_deg, "deg", 30.0, Limits::closed(-89.0, 89.0), "incident θ_i")
-          .number("phi_deg", &BsdfBenchParams::phi_deg, "deg", -20.0, Limits::closed(-89.0, 89.0), "incident φ_i");
+          .integer("samples", &BsdfBenchParams::samples, "1", 1000000, Limits::at_least(1), "(w_o, lambda) samples per pass")
+          .number("theta_deg", &BsdfBenchParams::theta_deg, "deg", 30.0, Limits::closed(-89.0, 89.0), "incident theta_i")
+          .number("phi_deg", &BsdfBenchParams::phi_deg, "deg", -20.0, Limits::closed(-89.0, 89.0), "incident phi_i");
   return table;
 }
 
