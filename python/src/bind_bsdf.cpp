@@ -145,11 +145,24 @@ py::array_t<double> evaluate(const Bsdf& b, const py::handle& wi_in, const py::h
   return out;
 }
 
-py::dict sample(const Bsdf& b, const py::handle& wi_in, const py::handle& lambda_in, const py::handle& u_in,
-                const std::optional<std::uint64_t>& instance) {
+// The uniform numbers of sample(): the caller's, or numpy's default generator seeded with `seed`
+// (n rows; n None: one per wavelength given).
+py::object uniforms(const py::object& u, const py::object& seed, const py::object& n, const Wavelengths& lambda) {
+  if (!u.is_none()) {
+    if (!seed.is_none() || !n.is_none()) throw py::value_error("sample: give u, or seed (and n), not both");
+    return u;
+  }
+  if (seed.is_none()) throw py::value_error("sample: give u (N, 3) or a seed");
+  const py::object rows = n.is_none() ? py::cast(lambda.count ? lambda.count : 1) : n;
+  return py::module_::import("numpy").attr("random").attr("default_rng")(seed).attr("random")(py::make_tuple(rows, 3));
+}
+
+py::dict sample(const Bsdf& b, const py::handle& wi_in, const py::handle& lambda_in, const py::object& u_in,
+                const py::object& seed, const py::object& rows_wanted, const std::optional<std::uint64_t>& instance) {
   const Directions wi = directions(wi_in, "wi");
   const Wavelengths lambda = wavelengths(lambda_in, b.bsdf->material());
-  const Doubles u = ensure_doubles(u_in, "u");
+  const py::object u_given = uniforms(u_in, seed, rows_wanted, lambda);
+  const Doubles u = ensure_doubles(u_given, "u");
   if (u.ndim() != 2 || u.shape(1) != 3) throw py::value_error("u: expected shape (N, 3) of uniform numbers in [0, 1)");
   const std::size_t rows = static_cast<std::size_t>(u.shape(0));
   for (std::size_t k = 0; k < 3 * rows; ++k)
@@ -176,6 +189,7 @@ py::dict sample(const Bsdf& b, const py::handle& wi_in, const py::handle& lambda
   }
   py::dict d;
   d["wo"] = wo, d["f"] = f, d["pdf"] = pdf, d["weight"] = weight, d["transmitted"] = transmitted;
+  if (u_in.is_none()) d["u"] = u_given;  // the numbers drawn from the seed
   return d;
 }
 
@@ -212,11 +226,14 @@ wavelengths outside the material.)doc")
            },
            py::arg("wi"), py::arg("wo"), py::arg("lambda_nm"),
            "Density per solid angle (sr⁻¹) of sample()'s wo over the whole sphere, shape (N,).")
-      .def("sample", &sample, py::arg("wi"), py::arg("lambda_nm"), py::arg("u"), py::arg("instance") = py::none(),
-           "Importance-samples the mean lobe (and the transmission lobe) with the caller's uniform "
-           "numbers u, shape (N, 3) in [0, 1) (u[:, 0] picks the lobe, u[:, 1:] drive it). Returns a "
-           "dict: wo (N, 3), f (N,) of the mean or of instance k, pdf (N,) per solid angle, weight "
-           "(N,) = f·|wo_z|/pdf (0 when pdf = 0), transmitted (N,) bool.")
+      .def("sample", &sample, py::arg("wi"), py::arg("lambda_nm"), py::arg("u") = py::none(), py::kw_only(),
+           py::arg("seed") = py::none(), py::arg("n") = py::none(), py::arg("instance") = py::none(),
+           "Importance-samples the mean lobe (and the transmission lobe) with uniform numbers u, shape "
+           "(N, 3) in [0, 1) (u[:, 0] picks the lobe, u[:, 1:] drive it), or with n rows drawn by "
+           "numpy.random.default_rng(seed) (n None: one per wavelength). The library has no hidden "
+           "random state: the same u give the same samples. Returns a dict: wo (N, 3), f (N,) of "
+           "the mean or of instance k, pdf (N,) per solid angle, weight (N,) = f·|wo_z|/pdf (0 when "
+           "pdf = 0), transmitted (N,) bool, and u when drawn from the seed.")
       .def("reflection_albedo",
            [](const Bsdf& b, const py::handle& wi_in, const py::handle& lambda_in, int strata) {
              if (strata < 1) throw py::value_error("strata must be >= 1");

@@ -103,6 +103,10 @@ def test_samples_match_eval_and_pdf(bsdf):
     np.testing.assert_allclose(s["weight"][ok], s["f"][ok] * np.abs(s["wo"][ok, 2]) / s["pdf"][ok], rtol=1e-12)
     si = bsdf.sample(wi, 450.0, rng.random((100, 3)), instance=2)
     assert si["f"].shape == (100,)
+    seeded = bsdf.sample(wi, 450.0, seed=5, n=64)
+    again = bsdf.sample(wi, 450.0, seeded["u"])
+    assert seeded["u"].shape == (64, 3) and np.array_equal(seeded["wo"], again["wo"])
+    assert np.array_equal(bsdf.sample(wi, 450.0, seed=5, n=64)["weight"], seeded["weight"])
     # The white furnace from Python: A_r + T_w <= 1, as the BSDF's energy budget promises.
     a = bsdf.reflection_albedo(wi, [400.0, 500.0], strata=32)
     t = bsdf.transmission_albedo([400.0, 500.0])
@@ -121,6 +125,8 @@ def test_bad_inputs_raise(bsdf):
         bsdf.eval([0, 0, 2.0], wo, 450.0)
     with pytest.raises(TypeError):
         bsdf.eval("up", wo, 450.0)
+    with pytest.raises(ValueError, match="seed"):
+        bsdf.sample([0, 0, 1.0], 450.0)
     with pytest.raises(ValueError, match=r"\[0, 1\)"):
         bsdf.sample([0, 0, 1.0], 450.0, np.full((3, 3), 1.5))
     with pytest.raises(ValueError):
