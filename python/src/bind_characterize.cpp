@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/characterize.hpp"
 #include "plumage/config_document.hpp"
 #include "plumage/param_table.hpp"
@@ -71,6 +72,9 @@ py::dict run_characterize(const Species& species, const std::filesystem::path& o
                           const py::dict& overrides, const py::object& progress, const py::object& on_plan,
                           const py::object& shard, const std::string& other_journal,
                           const py::object& diagnostics, const std::string& tables) {
+  // The command's checks of --out and --diagnostics (before any work).
+  check_output_path(out, "out");
+  check_output_not_input(out, "out", species.config.file, "species config");
   const CharacterizeSettings s =
       characterize_settings(species.config, *species.registry->registry, fidelity, read_overrides(overrides));
   CharacterizeOptions options;
@@ -78,7 +82,10 @@ py::dict run_characterize(const Species& species, const std::filesystem::path& o
   if (other_journal == "restart") options.other_journal = CharacterizeOptions::OtherJournal::restart;
   else if (other_journal != "refuse") throw py::value_error("other_journal: expected 'refuse' or 'restart'");
   // None: no pictures (an empty path; Python's Path('') would be '.', the current folder).
-  if (!diagnostics.is_none()) options.diagnostics_dir = diagnostics.cast<std::filesystem::path>();
+  if (!diagnostics.is_none()) {
+    options.diagnostics_dir = diagnostics.cast<std::filesystem::path>();
+    check_output_directory(options.diagnostics_dir, "diagnostics");
+  }
   options.preparation = preparation_from(tables, progress);  // the table build reports to it too
   options.progress = progress_from_python(progress);
   // Polled before each group: a pending Ctrl-C raises KeyboardInterrupt there (journal kept).
@@ -144,10 +151,13 @@ Ctrl-C, or an exception raised by progress, stops the run between groups: Keyboa
 that exception), no output file, the journal kept for the next call. Returns a dict: settings,
 plan (groups, resumed, todo, part, parts, mpi, journal, damaged_records), root, shard_written,
 shard_groups, fit_summary, warnings, wall_s, cpu_s, material (plumage.Material; None for a
-shard). ConfigError for bad settings (nothing written).)doc");
+shard). ConfigError for bad settings, OutputPathError for `out` a symlink or the species file
+itself (nothing written).)doc");
   m.def(
       "merge_shards",
       [](const std::vector<std::filesystem::path>& shards, const std::filesystem::path& out) {
+        check_output_path(out, "out");  // the command's: merge X --out X would overwrite a shard
+        for (const auto& shard : shards) check_output_not_input(out, "out", shard, "shard");
         MergeResult r;
         begin_run();
         {
@@ -163,7 +173,8 @@ shard). ConfigError for bad settings (nothing written).)doc");
       py::arg("shards"), py::arg("out"),
       "`plumage merge SHARDS... --out OUT`: the material from the shard files of a sharded "
       "characterisation (any order), bit-identical to a single run. ConfigError for shards of "
-      "different settings, Error for a damaged or missing one (nothing written). Returns a dict: "
+      "different settings, Error for a damaged or missing one, OutputPathError for `out` a shard "
+      "(nothing written). Returns a dict: "
       "settings, fit_summary, warnings, material.");
 }
 

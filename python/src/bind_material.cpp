@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "plumage/atomic_file.hpp"
 #include "plumage/brdf_report.hpp"
 #include "plumage/colour.hpp"
 #include "py_material.hpp"
@@ -122,6 +123,9 @@ void add_report_methods(py::class_<Material, MaterialPtr>& material) {
            [](const MaterialPtr& s, const std::filesystem::path& out, const py::object& incidents, int instances, int size,
               double exposure) {
              const HemispherePlotOptions o = plot_options(incidents, instances, size, exposure);
+             // The command's checks of --out: not a symlink, not the material itself.
+             check_output_path(out, "out");
+             check_output_not_input(out, "out", s->file, "material");
              py::gil_scoped_release release;
              const HemispherePanels p = hemisphere_panels(s->data, o);
              write_hemisphere_figure(p, o, *s->data, out);
@@ -130,7 +134,8 @@ void add_report_methods(py::class_<Material, MaterialPtr>& material) {
            py::arg("out"), py::arg("incidents") = std::vector<std::pair<double, double>>{{0, 0}, {0, -45}, {45, 0}},
            py::arg("instances") = 2, py::arg("size") = 192, py::arg("exposure") = 0.0,
            "`plumage brdf plot FILE --out PNG`: the same panels as one titled figure, written "
-           "atomically (the same bytes as the command). Returns the exposure used.")
+           "atomically (the same bytes as the command). Returns the exposure used. OutputPathError "
+           "for a symlink or the material's own file as `out`.")
       .def("white_furnace",
            [](const MaterialPtr& s, double transmission) {
              if (!(transmission >= 0.0 && transmission <= 1.0)) throw py::value_error("transmission must be in [0, 1]");

@@ -89,6 +89,8 @@ def test_shards_merged_equal_a_single_run(rockdove, tmp_path, plumage_cli):
     with pytest.raises(plumage.Error):
         plumage.merge_shards(shards[:1], tmp_path / "half.plm")
     assert not (tmp_path / "half.plm").exists()
+    with pytest.raises(plumage.OutputPathError):
+        plumage.merge_shards(shards, shards[0])
 
 
 def test_bad_settings_raise_and_write_nothing(rockdove, tmp_path):
@@ -101,4 +103,6 @@ def test_bad_settings_raise_and_write_nothing(rockdove, tmp_path):
         plumage.characterize(rockdove, tmp_path / "x.plm", **TINY, shard=(3, 2))
     with pytest.raises(plumage.Error, match="no fidelity preset 'nosuch'"):
         plumage.characterize(rockdove, tmp_path / "x.plm", "nosuch", **TINY)
+    with pytest.raises(plumage.OutputPathError):
+        plumage.characterize(rockdove, rockdove.file, **TINY)
     assert not any(tmp_path.iterdir())

@@ -135,6 +135,8 @@ def test_bad_inputs_raise(bsdf):
         bsdf.material.bsdf(transmission_albedo=2)
     with pytest.raises(plumage.InputFileError):
         plumage.load_material(__file__)
+    with pytest.raises(plumage.OutputPathError):  # as the command's --out
+        bsdf.material.plot_hemispheres(bsdf.material.file, size=16)
 
 
 def timed_eval(bsdf, wo, lam, spans):
