@@ -11,6 +11,7 @@ void register_approximate_benchmark(PluginRegistry& registry); // solver/approxi
 void register_fit_ladder(PluginRegistry& registry);            // fit/fit_ladder.cpp
 void register_geometry_benchmark(PluginRegistry& registry);    // geometry/geometry_benchmark.cpp
 void register_ladder_benchmark(PluginRegistry& registry);      // report/ladder_benchmark.cpp
+void register_bsdf_benchmark(PluginRegistry& registry);        // bsdf/bsdf_benchmark.cpp
 
 void register_builtin_plugins(PluginRegistry& registry) {
   register_validation_shape(registry);
@@ -20,6 +21,7 @@ void register_builtin_plugins(PluginRegistry& registry) {
   register_fit_ladder(registry);
   register_geometry_benchmark(registry);
   register_ladder_benchmark(registry);
+  register_bsdf_benchmark(registry);
 }
 
 }  // namespace plumage
