@@ -57,10 +57,12 @@ py::dict material_dict(const SceneConfig& c, std::size_t k) {
   d["name"] = m.name;
   d["kind"] = m.kind == SceneMaterial::Kind::feather ? "feather" : m.kind == SceneMaterial::Kind::diffuse ? "diffuse" : "dielectric";
   if (const auto& q = c.feather_requests[k]) {
-    d["species_config"] = q->species_config;
+    // An empty path would read as Path('.') in Python: None says "not given".
+    auto path_or_none = [](const fs::path& p) { return p.empty() ? py::none() : py::cast(p); };
+    d["species_config"] = path_or_none(q->species_config);
     d["variant"] = q->variant;
     d["fidelity"] = q->fidelity;
-    d["file"] = q->file;
+    d["file"] = path_or_none(q->file);
   }
   return d;
 }
@@ -177,7 +179,7 @@ work: the renderer created from its `renderer:` section, views resolved. Made by
         for (std::size_t k = 0; k < s.job->config().materials.size(); ++k) out.append(material_dict(s.job->config(), k));
         return out;
       }, "One dict per material: name, kind (feather | diffuse | dielectric); feather ones also "
-         "species_config, variant, fidelity, file.")
+         "species_config, variant, fidelity, file (a path, or None when not given).")
       .def_property_readonly("objects", [](const LoadedScene& s) {
         py::list out;
         for (const SceneObjectSpec& o : s.job->config().objects) out.append(object_dict(s.job->config(), o));
