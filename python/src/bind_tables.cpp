@@ -118,11 +118,7 @@ A photonic-crystal cell (configs/crystals/<name>.yaml, top-level `crystal:`), va
         "ConfigError (file, line, column, field) for any bad input.");
 }
 
-}  // namespace
-
-void bind_tables(py::module_& m) {
-  bind_crystal(m);
-
+void bind_reflection_table(py::module_& m) {
   py::class_<ReflectionTable, std::shared_ptr<ReflectionTable>>(m, "ReflectionTable", R"doc(
 A photonic-crystal reflection table (.plt): per (λ, cos θ, cos φ_local) the 2×2 Jones reflection
 of the specular order in the (s, p) basis. Made by plumage.read_table.)doc")
@@ -201,7 +197,9 @@ of the specular order in the (s, p) basis. Made by plumage.read_table.)doc")
           return std::make_shared<ReflectionTable>(ReflectionTable::load(file));
         },
         py::arg("file"), "Read a reflection table file (.plt). Raises plumage.errors.Error for a missing or damaged file.");
+}
 
+void bind_build_table(py::module_& m) {
   m.def("build_table",
         [](const std::filesystem::path& crystal_file, const std::filesystem::path& out, const std::string& fidelity,
            const std::string& builder, double lambda_min_nm, double lambda_max_nm, int n_lambda, int n_theta, int n_phi,
@@ -243,6 +241,14 @@ of the specular order in the (s, p) basis. Made by plumage.read_table.)doc")
         "(restart=True discards them). Returns a dict (crystal, n_lambda, n_theta, n_phi, "
         "resolution_nm, notes). Raises ConfigError for a bad crystal or builder setting, "
         "OutputPathError for an output that is a symlink or a folder.");
+}
+
+}  // namespace
+
+void bind_tables(py::module_& m) {
+  bind_crystal(m);
+  bind_reflection_table(m);
+  bind_build_table(m);
 }
 
 }  // namespace plumage::python
