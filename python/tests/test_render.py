@@ -119,6 +119,9 @@ def test_bad_inputs_raise_the_documented_errors(plane, tmp_path, configs):
         plumage.render(plane, width=8)
     with pytest.raises(ValueError, match="spp"):
         plumage.render(plane, spp=0)
+    # A setting the renderer's own table refuses names the Python argument as its source.
+    with pytest.raises(errors.ConfigError, match=r"plumage\.render\(spp=\.\.\.\).*renderer\.spp"):
+        plumage.render(plane, spp=2**21)
     # A species material that is not cached, characterisation off: the message names the command.
     uncached = tmp_path / "uncached.yaml"
     species = configs / "species" / "starling.yaml"
