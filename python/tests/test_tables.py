@@ -2,6 +2,10 @@
 build`, queries the same numbers as `plumage table query`, bad input as plumage.errors."""
 import json
 import math
+import os
+import signal
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -98,6 +102,20 @@ def test_a_raising_progress_stops_the_build_and_the_rerun_resumes(tiny_crystal, 
     result = plumage.build_table(tiny_crystal, out, **GRID)
     assert "resumed from a checkpoint" in result["notes"]
     assert plumage.read_table(out).notes == result["notes"]
+
+
+def test_ctrl_c_stops_the_build(tiny_crystal, tmp_path):
+    # SIGINT while the builder runs without the GIL: the next progress report raises it.
+    out = tmp_path / "interrupted.plt"
+    timer = threading.Timer(0.2, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            plumage.build_table(tiny_crystal, out, **GRID)
+            time.sleep(5)  # a build faster than the timer: the interrupt still arrives here
+    finally:
+        timer.cancel()
+    assert out.exists() or out.with_name(out.name + ".partial").exists()
 
 
 def test_bad_inputs_raise_the_documented_errors(tiny_crystal, tmp_path):
