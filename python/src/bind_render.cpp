@@ -7,7 +7,6 @@
 
 #include "plumage/atomic_file.hpp"
 #include "plumage/config_check.hpp"
-#include "plumage/exr.hpp"
 #include "plumage/material_store.hpp"
 #include "plumage/render_job.hpp"
 #include "py_common.hpp"
@@ -17,7 +16,6 @@ namespace plumage::python {
 namespace {
 
 namespace fs = std::filesystem;
-using namespace pybind11::literals;
 
 // A scene as `plumage render` reads it: the job made (scene checked, renderer created), nothing run.
 struct LoadedScene {
@@ -26,12 +24,10 @@ struct LoadedScene {
   std::string summary;  // the `plumage check` line
 };
 
-// One rendered view: the files, and the radiance read back from the EXR the library wrote.
+// One rendered view: the files (when asked for), the renderer's radiance and the run's warnings.
 struct RenderOutput {
-  RenderedView view;
-  LinearImage radiance;
-  std::vector<std::string> warnings;  // the EXR's plumage:warnings, one a line
-  bool kept_files = false;            // false: rendered into a temporary folder, removed since
+  RenderedView view;                  // with the renderer's RenderResult (the radiance viewed)
+  std::vector<std::string> warnings;  // the run's warnings (the EXR's plumage:warnings), one a line
 };
 
 py::list vec3(const Vec3f& v) { return py::cast(std::vector<double>{v.x, v.y, v.z}); }
@@ -120,10 +116,6 @@ std::vector<std::string> lines_of(const std::string& text) {
   return out;
 }
 
-// A folder of our own under the system's temporary folder (Python's tempfile, so TMPDIR is
-// honoured) for a render asked without `out`: the library always writes its EXR and PNG.
-fs::path temporary_folder() { return py::module_::import("tempfile").attr("mkdtemp")("prefix"_a = "plumage-render-").cast<std::string>(); }
-
 struct RenderArgs {
   fs::path scene_file;
   RenderJobOptions job;
@@ -147,13 +139,9 @@ std::vector<RenderOutput> run_render(const RenderArgs& a, const PluginRegistry& 
   std::vector<RenderOutput> outputs;
   for (std::size_t k = 0; k < job.views().size(); ++k) {
     RenderOutput o;
+    // An empty out_dir (no `out`): nothing written, the image only in o.view.result.
     o.view = job.render_view(k, out_dir, progress);
-    // The image the command wrote, read back: float32 R, G, B, so the array is the renderer's
-    // radiance bit for bit (RenderJob keeps no RenderResult to view).
-    o.radiance = read_exr_rgb(o.view.exr);
-    const auto attributes = read_exr_string_attributes(o.view.exr);
-    if (auto it = attributes.find("plumage:warnings"); it != attributes.end()) o.warnings = lines_of(it->second);
-    o.kept_files = a.out.has_value();
+    o.warnings = lines_of(o.view.warnings);
     outputs.push_back(std::move(o));
   }
   return outputs;
@@ -210,18 +198,19 @@ void bind_rendered_view(py::module_& m) {
       .def_property_readonly("width", [](const RenderOutput& o) { return o.view.width; })
       .def_property_readonly("height", [](const RenderOutput& o) { return o.view.height; })
       .def_property_readonly("radiance", [](py::object self) {
-        const RenderOutput& o = self.cast<const RenderOutput&>();
-        const auto h = static_cast<py::ssize_t>(o.radiance.height()), w = static_cast<py::ssize_t>(o.radiance.width());
+        const LinearImage& rgb = self.cast<const RenderOutput&>().view.result.rgb;
+        const auto h = static_cast<py::ssize_t>(rgb.height()), w = static_cast<py::ssize_t>(rgb.width());
         const py::ssize_t f = sizeof(float);
         static_assert(sizeof(RgbF) == 3 * sizeof(float), "RgbF must be three packed floats");
         py::array out(py::dtype::of<float>(), {h, w, py::ssize_t{3}}, {w * 3 * f, 3 * f, f},
-                      reinterpret_cast<const float*>(o.radiance.pixels().data()), self);
+                      reinterpret_cast<const float*>(rgb.pixels().data()), self);
         py::detail::array_proxy(out.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
         return out;
-      }, "Linear sRGB radiance, float32 of shape (height, width, 3), the EXR's pixels; read-only view.")
-      .def_property_readonly("exr", [](const RenderOutput& o) { return o.kept_files ? py::cast(o.view.exr) : py::none(); },
+      }, "Linear sRGB radiance, float32 of shape (height, width, 3), the renderer's own buffer (the "
+         "EXR's pixels bit for bit); a read-only zero-copy view.")
+      .def_property_readonly("exr", [](const RenderOutput& o) { return o.view.exr.empty() ? py::none() : py::cast(o.view.exr); },
                              "The EXR written (None when render() had no `out`).")
-      .def_property_readonly("png", [](const RenderOutput& o) { return o.kept_files ? py::cast(o.view.png) : py::none(); },
+      .def_property_readonly("png", [](const RenderOutput& o) { return o.view.png.empty() ? py::none() : py::cast(o.view.png); },
                              "The PNG preview written (None when render() had no `out`).")
       .def_property_readonly("stats", [](const RenderOutput& o) {
         py::dict d;
@@ -277,16 +266,12 @@ void bind_render(py::module_& m) {
             check_output_directory(*a.out, "out");
           }
           const RegistryPtr r = registry_or_default(registry);
-          const fs::path out_dir = a.out ? *a.out : temporary_folder();
+          const fs::path out_dir = a.out ? *a.out : fs::path{};
           std::vector<RenderOutput> outputs;
-          try {
+          {
             py::gil_scoped_release release;
             outputs = run_render(a, *r->registry, out_dir, report);
-          } catch (...) {
-            if (!a.out) py::module_::import("shutil").attr("rmtree")(out_dir.string(), "ignore_errors"_a = true);
-            throw;
           }
-          if (!a.out) py::module_::import("shutil").attr("rmtree")(out_dir.string(), "ignore_errors"_a = true);
           py::list result;
           for (RenderOutput& o : outputs) result.append(std::make_shared<RenderOutput>(std::move(o)));
           return result;

@@ -57,6 +57,11 @@ struct RenderedView {
   // material.warnings before the EXR was written (its plumage:warnings attribute).
   std::vector<WarningShare> warning_shares;
   double warning_share_threshold = 0.01;
+  // The renderer's output itself (radiance, spectral channels), what the files hold; the Python
+  // package hands it out as arrays without reading the EXR back.
+  RenderResult result;
+  // The run's warnings when the view was done (diagnostics summary, the EXR's plumage:warnings).
+  std::string warnings;
 };
 
 // The image buffers of one view (memory_budget.hpp); RenderJob refuses views that would not fit
@@ -80,8 +85,9 @@ class RenderJob {
   double geometry_seconds() const;
   // Resolves every feather material through `resolve`.
   void resolve_materials(const FeatherResolver& resolve);
-  // Renders views()[k] and writes <out_dir>/<name>.exr and .png (write_render_images). With a
-  // single view the meshes move into its scene, so each view renders once.
+  // Renders views()[k] and writes <out_dir>/<name>.exr and .png (write_render_images); an empty
+  // out_dir writes nothing (the image is in RenderedView::result). With a single view the meshes
+  // move into its scene, so each view renders once.
   RenderedView render_view(std::size_t k, const std::filesystem::path& out_dir, const Renderer::Progress& progress);
 
  private:

@@ -163,24 +163,30 @@ RenderedView RenderJob::render_view(std::size_t k, const fs::path& out_dir, cons
   Scene scene = make_scene(s.config, *s.views.at(k), last_use ? std::move(s.meshes) : s.meshes);
   s.meshes_moved = last_use;
   const ThreadCap cap(s.options.max_threads);
+  const bool write = !out_dir.empty();
   // Output paths before the render, which may take hours.
-  check_output_directory(out_dir);
-  check_output_path(out_dir / (scene.name + ".exr"));
-  check_output_path(out_dir / (scene.name + ".png"));
+  if (write) {
+    check_output_directory(out_dir);
+    check_output_path(out_dir / (scene.name + ".exr"));
+    check_output_path(out_dir / (scene.name + ".png"));
+  }
   const std::clock_t cpu0 = std::clock();
-  const RenderResult result = s.renderer->render(scene, progress);
   RenderedView out;
+  out.result = s.renderer->render(scene, progress);
   out.cpu_s = static_cast<double>(std::clock() - cpu0) / CLOCKS_PER_SEC;
   out.name = scene.name;
-  out.exr = out_dir / (scene.name + ".exr");
-  out.png = out_dir / (scene.name + ".png");
   out.width = scene.camera.width, out.height = scene.camera.height;
-  out.stats = result.stats;
-  out.warning_shares = result.warning_shares;
+  out.stats = out.result.stats;
+  out.warning_shares = out.result.warning_shares;
   out.warning_share_threshold = s.config.warning_share;
   warn_reached_directions(out);
-  create_output_directory(out_dir);
-  write_render_images(result, s.config.exposure, out.exr, out.png);
+  out.warnings = diagnostics().summary();
+  if (write) {
+    out.exr = out_dir / (scene.name + ".exr");
+    out.png = out_dir / (scene.name + ".png");
+    create_output_directory(out_dir);
+    write_render_images(out.result, s.config.exposure, out.exr, out.png);
+  }
   return out;
 }
 
