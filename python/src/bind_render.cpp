@@ -2,11 +2,14 @@
 // check` of a scene) and render (`plumage render`), calling plumage/render_job.hpp and
 // material_store.hpp step by step as core/cli/cmd_render.cpp does.
 #include <algorithm>
+#include <cstring>
+#include <map>
 #include <memory>
 #include <optional>
 
 #include "plumage/atomic_file.hpp"
 #include "plumage/config_check.hpp"
+#include "plumage/exr.hpp"
 #include "plumage/material_store.hpp"
 #include "plumage/render_job.hpp"
 #include "py_common.hpp"
@@ -245,6 +248,23 @@ void bind_rendered_view(py::module_& m) {
 void bind_render(py::module_& m) {
   bind_scene(m);
   bind_rendered_view(m);
+
+  m.def("read_exr",
+        [](const fs::path& file) {
+          LinearImage rgb;
+          std::map<std::string, std::string> attributes;
+          {
+            py::gil_scoped_release release;
+            rgb = read_exr_rgb(file);
+            attributes = read_exr_string_attributes(file);
+          }
+          py::array_t<float> out({static_cast<py::ssize_t>(rgb.height()), static_cast<py::ssize_t>(rgb.width()), py::ssize_t{3}});
+          std::memcpy(out.mutable_data(), rgb.pixels().data(), rgb.pixels().size() * sizeof(RgbF));
+          return py::make_tuple(out, attributes);
+        },
+        py::arg("file"),
+        "Read an EXR plumage wrote: (radiance, attributes) — float32 (height, width, 3) linear sRGB "
+        "and the string attributes (plumage:warnings...).");
 
   m.def("render",
         [](const fs::path& scene_file, const py::object& view, int width, int height, std::optional<int> spp,

@@ -73,6 +73,10 @@ def test_render_writes_the_commands_images(feather, tmp_path, plumage_cli):
         assert v.exr == tmp_path / "py" / f"{v.name}.exr"
         assert v.radiance.shape == (16, 24, 3) and v.radiance.dtype == np.float32
         assert not v.radiance.flags.writeable
+        # The array is the renderer's buffer: the command's EXR pixels bit for bit.
+        cli_radiance, attributes = plumage.read_exr(tmp_path / "cli" / f"{v.name}.exr")
+        assert cli_radiance.tobytes() == v.radiance.tobytes()
+        assert "plumage:warnings" not in attributes
         assert v.stats["camera_paths"] == 24 * 16 * 2
         assert v.warnings == []
     assert views[0].radiance[..., 1].max() > 0  # the feather is seen
