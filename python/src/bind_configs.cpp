@@ -2,6 +2,7 @@
 #include "plumage/config_check.hpp"
 #include "plumage/species_config.hpp"
 #include "py_common.hpp"
+#include "py_pipeline.hpp"
 
 namespace plumage::python {
 
@@ -43,12 +44,7 @@ names created. Made by plumage.load_species.)doc")
                              "What prepare() would still do, one line per model ('' for nothing).")
       .def("prepare",
            [](const Species& s, const std::string& tables, const py::object& progress) {
-             PreparationOptions options;
-             if (tables == "build") options.tables = PreparationOptions::Tables::build;
-             else if (tables == "preview") options.tables = PreparationOptions::Tables::preview;
-             else if (tables == "never") options.tables = PreparationOptions::Tables::never;
-             else throw py::value_error("tables: expected 'build', 'preview' or 'never', not '" + tables + "'");
-             options.progress = progress_from_python(progress);
+             const PreparationOptions options = preparation_from(tables, progress);
              py::gil_scoped_release release;
              prepare_species(s.config, options);
            },

@@ -13,6 +13,7 @@
 #include "plumage/material_store.hpp"
 #include "plumage/render_job.hpp"
 #include "py_common.hpp"
+#include "py_pipeline.hpp"
 
 namespace plumage::python {
 
@@ -99,13 +100,6 @@ RenderJobOptions job_options(const std::string& view, int width, int height, std
     j.max_threads = static_cast<std::size_t>(threads);
   }
   return j;
-}
-
-PreparationOptions::Tables tables_mode(const std::string& tables) {
-  if (tables == "build") return PreparationOptions::Tables::build;
-  if (tables == "preview") return PreparationOptions::Tables::preview;
-  if (tables == "never") return PreparationOptions::Tables::never;
-  throw py::value_error("tables: expected 'build', 'preview' or 'never', not '" + tables + "'");
 }
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -277,7 +271,7 @@ void bind_render(py::module_& m) {
                               lod.is_none() ? "" : lod.cast<std::string>(), threads);
           a.store.directory = materials;
           a.store.allow_characterize = allow_characterize;
-          a.store.preparation.tables = tables_mode(tables);
+          a.store.preparation.tables = preparation_from(tables, py::none()).tables;
           const ProgressFn report = progress_from_python(progress);
           a.store.progress = report;
           a.store.preparation.progress = report;

@@ -1,6 +1,7 @@
-// What the pipeline bindings (geometry, multilayer, simulate, compare) share: the explicit
-// preparation step from Python arguments, complex read-only views, and the Python forms of a
-// layer stack and of a far field (one pipeline result each, used by more than one area).
+// What the pipeline bindings share (geometry, multilayer, simulate, compare, characterize, render,
+// the species' prepare): the explicit preparation step from Python arguments, complex read-only
+// views, and the Python forms of a layer stack and of a far field (one pipeline result each, used
+// by more than one area).
 #pragma once
 
 #include <complex>
