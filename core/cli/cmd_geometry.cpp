@@ -44,10 +44,8 @@ void run(AppContext& context, const Options& o) {
     if (!instance.problems.empty() && o.allow_invalid) {
       for (const auto& p : instance.problems)
         if (!context.quiet) std::cerr << "warning: instance " << index << ": " << p << "\n";
-    } else if (!instance.problems.empty()) {
-      std::string msg = stem + " instance " + std::to_string(index) + " is geometrically invalid:";
-      for (const auto& p : instance.problems) msg += "\n  " + p;
-      throw Error(msg);
+    } else {
+      refuse_invalid_instance(instance, stem, index);
     }
     const CrossSection& cs = instance.section;
     if (!context.quiet) {

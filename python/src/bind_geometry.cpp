@@ -80,20 +80,15 @@ CrossSectionPictures pictures_from(bool svg, bool png, double window_um, double 
 CrossSectionPtr generate(const Species& species, long long instance, bool allow_invalid) {
   if (instance < 0) refuse_argument("--first", "must be >= 0");
   const StructureGenerator& generator = required_structure(species.config);
+  const std::string stem = species.config.species + (species.config.variant.empty() ? "" : "-" + species.config.variant);
   auto out = std::make_shared<PyCrossSection>();
   {
     py::gil_scoped_release release;
     CheckedInstance checked = generate_checked(generator, static_cast<std::uint64_t>(instance));
+    if (!allow_invalid) refuse_invalid_instance(checked, stem, static_cast<std::uint64_t>(instance));
     out->section = std::move(checked.section);
     out->problems = std::move(checked.problems);
     out->generate_ms = checked.generate_ms;
-  }
-  if (!out->problems.empty() && !allow_invalid) {
-    // The command's refusal, word for word.
-    const std::string stem = species.config.species + (species.config.variant.empty() ? "" : "-" + species.config.variant);
-    std::string msg = stem + " instance " + std::to_string(instance) + " is geometrically invalid:";
-    for (const auto& p : out->problems) msg += "\n  " + p;
-    throw Error(msg);
   }
   return out;
 }

@@ -23,6 +23,9 @@ struct CheckedInstance {
 };
 // Instance `index` of `generator`, timed and checked for geometric validity.
 CheckedInstance generate_checked(const StructureGenerator& generator, std::uint64_t index);
+// Throws Error "<stem> instance <index> is geometrically invalid:" with one problem a line, when
+// `instance` has problems (`plumage geometry` and plumage.cross_section without allow_invalid).
+void refuse_invalid_instance(const CheckedInstance& instance, const std::string& stem, std::uint64_t index);
 
 struct CrossSectionPictures {
   bool svg = true;

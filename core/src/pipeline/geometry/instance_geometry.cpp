@@ -3,6 +3,7 @@
 
 #include "plumage/atomic_file.hpp"
 #include "plumage/cross_section_io.hpp"
+#include "plumage/error.hpp"
 #include "plumage/image.hpp"
 #include "plumage/instance_geometry.hpp"
 #include "plumage/memory_budget.hpp"
@@ -16,6 +17,13 @@ CheckedInstance generate_checked(const StructureGenerator& generator, std::uint6
   out.generate_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   out.problems = validate(out.section);
   return out;
+}
+
+void refuse_invalid_instance(const CheckedInstance& instance, const std::string& stem, std::uint64_t index) {
+  if (instance.problems.empty()) return;
+  std::string msg = stem + " instance " + std::to_string(index) + " is geometrically invalid:";
+  for (const auto& p : instance.problems) msg += "\n  " + p;
+  throw Error(msg);
 }
 
 namespace {
