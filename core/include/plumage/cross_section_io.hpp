@@ -1,10 +1,15 @@
-// Writing cross sections: the text format "plumage-cross-section 1" (docs/formats.md) and SVG
-// pictures (white air, grey keratin, black melanin; mixtures shaded by melanin fraction).
+// Cross sections as files: the text format "plumage-cross-section 1" (docs/formats.md), written
+// and read back exactly, and SVG / PNG pictures (white air, grey keratin, black melanin; mixtures
+// shaded by melanin fraction).
 #pragma once
 
 #include "plumage/memory_budget.hpp"
 
+#include <filesystem>
 #include <iosfwd>
+#include <string>
+#include <string_view>
+#include <cstdint>
 #include <optional>
 #include <utility>
 
@@ -13,7 +18,27 @@
 
 namespace plumage {
 
+// Every field of the section; numbers in their shortest exact form, so that reading the text
+// back gives the same section bit for bit.
 void write_cross_section_text(std::ostream& out, const CrossSection& section);
+
+// The largest count (vertices, regions, boundaries...) a .xsec line may state: far above any
+// plumage writes (a 2 mm barbule at 5 nm spacing has 4e5 top vertices), so that a damaged count
+// is refused by name before the file's remaining bytes are even compared with it.
+inline constexpr std::uint64_t kMaxCrossSectionCount = std::uint64_t{1} << 28;
+
+// Reads what write_cross_section_text wrote (the file through InputFile, input_file.hpp).
+// Refuses (InputFileError, "file: line N: what is wrong") a missing or non-regular file, a wrong
+// header or version, a truncated file, a field that is not a finite number, a count over
+// kMaxCrossSectionCount or over what the remaining bytes can hold (checked before allocating),
+// an unknown role or material, indices out of range (a parent after its child, a bracket closing
+// above itself), an open outline (a region of fewer than 3 vertices, or one that repeats its first
+// vertex at its end), per-vertex lists of the wrong length and bytes after `end`. Geometric
+// validity (self-intersections, nesting) is validate()'s (cross_section.hpp), as for generated
+// sections.
+CrossSection read_cross_section_text(const std::filesystem::path& file);
+// The same from text in memory; `file` names it in the messages.
+CrossSection parse_cross_section_text(std::string_view text, const std::string& file);
 
 struct SvgOptions {
   double pixels_per_um = 50.0;

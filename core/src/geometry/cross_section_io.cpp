@@ -4,6 +4,7 @@
 #include "plumage/cross_section_io.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <iomanip>
@@ -16,14 +17,45 @@ namespace plumage {
 
 namespace {
 
+// Numbers in their shortest form that reads back to the same double (std::to_chars), so that
+// read_cross_section_text(write_cross_section_text(cs)) == cs exactly (issue 25: an imported
+// section must give the procedural instance's far field to rounding).
+struct Exact {
+  double v;
+};
+std::ostream& operator<<(std::ostream& out, Exact e) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, e.v);
+  return out.write(buf, r.ptr - buf);
+}
+
+// Material::name() prints a constant index and a mixture's fraction with 6 digits (it names
+// materials in messages and keys); the file needs every bit, in the same syntax
+// (parse_material_text reads both).
+std::string exact_name(const Material& m) {
+  std::ostringstream os;
+  switch (m.kind()) {
+    case Material::Kind::constant: {
+      const Complex n = m.index(550.0);
+      os << Exact{n.real()};
+      if (n.imag() != 0.0) os << '+' << Exact{n.imag()} << 'i';
+      return os.str();
+    }
+    case Material::Kind::mixture:
+      os << "mix(" << exact_name(m.host()) << ", " << exact_name(m.guest()) << ", " << Exact{m.fraction()} << ')';
+      return os.str();
+    default:
+      return m.name();
+  }
+}
+
 void points(std::ostream& out, const Polyline& p) {
-  for (const Vec2& v : p) out << v.x << ' ' << v.z << '\n';
+  for (const Vec2& v : p) out << Exact{v.x} << ' ' << Exact{v.z} << '\n';
 }
 
 }  // namespace
 
 void write_cross_section_text(std::ostream& out, const CrossSection& cs) {
-  out << std::setprecision(10);
   out << "plumage-cross-section 1\n";
   out << "label " << cs.label << "\n";
   out << "generator " << cs.generator << "\n";
@@ -33,27 +65,27 @@ void write_cross_section_text(std::ostream& out, const CrossSection& cs) {
   out << "top " << cs.top.size() << "\n";
   points(out, cs.top);
   out << "top_roughness " << cs.top_roughness_nm.size() << "\n";
-  for (double r : cs.top_roughness_nm) out << r << '\n';
+  for (double r : cs.top_roughness_nm) out << Exact{r} << '\n';
   out << "bottom " << cs.bottom.size() << "\n";
   points(out, cs.bottom);
   out << "regions " << cs.regions.size() << "\n";
   for (std::size_t i = 0; i < cs.regions.size(); ++i) {
     const Region& r = cs.regions[i];
     out << "region " << i << " " << role_name(r.role) << " parent " << r.parent << " layer " << r.layer
-        << " members " << r.members << " size_nm " << r.size_nm << " vertices " << r.outline.size()
-        << " material " << r.material.name() << "\n";
+        << " members " << r.members << " size_nm " << Exact{r.size_nm} << " vertices " << r.outline.size()
+        << " material " << exact_name(r.material) << "\n";
     points(out, r.outline);
   }
   if (cs.layered) {
-    out << "layered " << cs.layered->boundaries.size() << " below_top " << cs.layered->below_top.name() << "\n";
+    out << "layered " << cs.layered->boundaries.size() << " below_top " << exact_name(cs.layered->below_top) << "\n";
     for (std::size_t i = 0; i < cs.layered->boundaries.size(); ++i) {
       const LayerBoundary& b = cs.layered->boundaries[i];
       const bool f = !b.fraction.empty();
       out << "boundary " << i << " closes " << b.closes << " points " << b.points.size()
-          << " fraction " << (f ? 1 : 0) << " below " << b.below.name() << "\n";
+          << " fraction " << (f ? 1 : 0) << " below " << exact_name(b.below) << "\n";
       for (std::size_t k = 0; k < b.points.size(); ++k) {
-        out << b.points[k].x << ' ' << b.points[k].z;
-        if (f) out << ' ' << b.fraction[k];
+        out << Exact{b.points[k].x} << ' ' << Exact{b.points[k].z};
+        if (f) out << ' ' << Exact{b.fraction[k]};
         out << '\n';
       }
     }
@@ -61,11 +93,11 @@ void write_cross_section_text(std::ostream& out, const CrossSection& cs) {
   if (cs.crystal) {
     out << "crystal " << cs.crystal->crystal_name << " " << cs.crystal->regularity.size() << " "
         << cs.crystal->crystal << "\n";
-    for (double q : cs.crystal->regularity) out << q << '\n';
+    for (double q : cs.crystal->regularity) out << Exact{q} << '\n';
   }
   out << "melanosomes " << cs.melanosomes.size() << "\n";
   for (const Disc& d : cs.melanosomes) {
-    out << d.center.x << ' ' << d.center.z << ' ' << d.diameter_nm << ' ' << d.row << '\n';
+    out << Exact{d.center.x} << ' ' << Exact{d.center.z} << ' ' << Exact{d.diameter_nm} << ' ' << d.row << '\n';
   }
   out << "end\n";
 }
