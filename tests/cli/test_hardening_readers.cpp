@@ -177,3 +177,21 @@ TEST_CASE("readers CLI: duplicate, mixed and missing shards exit 2 naming the fi
   CHECK(unit_count(merged.output) == unit_count(single.output));
   CHECK(bytes(out) == bytes(dir / "single.plm"));
 }
+
+TEST_CASE("readers CLI: a damaged imported .xsec exits 2 naming the file and the line", "[hardening-readers]") {
+  // Issue 25 (a): a species whose structure is xsec_file over a file cut short.
+  const fs::path dir = scratch("xsec");
+  const Result written = run("geometry " + kConfig + " --no-svg --no-png --out " + dir.string());
+  INFO(written.output);
+  REQUIRE(written.status == 0);
+  const std::string whole = bytes(dir / "rockdove-forest-0.xsec");
+  write_bytes(dir / "cut-0.xsec", whole.substr(0, whole.size() / 3));
+  write_bytes(dir / "imported.yaml",
+              "species: imported\nreflection: {model: multilayer}\n"
+              "structure: {generator: xsec_file, files: \"cut-{index}.xsec\"}\n");
+  const Result r = run("geometry " + (dir / "imported.yaml").string() + " --no-svg --no-png --out " + (dir / "out").string());
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains((dir / "cut-0.xsec").string() + ": line ") && Catch::Contains("truncated"));
+  CHECK_FALSE(fs::exists(dir / "out" / "imported-0.xsec"));
+}
