@@ -194,4 +194,9 @@ TEST_CASE("readers CLI: a damaged imported .xsec exits 2 naming the file and the
   CHECK(r.status == 2);
   CHECK_THAT(r.output, Catch::Contains((dir / "cut-0.xsec").string() + ": line ") && Catch::Contains("truncated"));
   CHECK_FALSE(fs::exists(dir / "out" / "imported-0.xsec"));
+  // `plumage check` lists it among the file's errors (it is not an escaped fault of check itself).
+  const Result checked = run("check " + (dir / "imported.yaml").string());
+  INFO(checked.output);
+  CHECK(checked.status == 2);
+  CHECK_THAT(checked.output, Catch::Contains((dir / "cut-0.xsec").string() + ": line ") && Catch::Contains("error(s)"));
 }

@@ -3,6 +3,7 @@
 // on its own (a species variant, a scene's feather material, a crystal's builder section) is
 // loaded in turn and its error kept, so that one run of check reports every error of the file.
 #include "plumage/config_check.hpp"
+#include "plumage/input_file.hpp"
 
 #include <algorithm>
 #include <functional>
@@ -24,7 +25,8 @@ namespace plumage {
 
 namespace {
 
-// Runs `step`, keeping a bad-input error (ConfigError, PluginError) in `c.errors` once; returns
+// Runs `step`, keeping a bad-input error (ConfigError, PluginError, a damaged input file the config
+// names, e.g. an imported .xsec) in `c.errors` once; returns
 // whether it succeeded. Faults (anything else) propagate: check itself failed.
 bool collect(ConfigCheck& c, const std::function<void()>& step) {
   auto keep = [&c](const std::string& message) {
@@ -38,6 +40,8 @@ bool collect(ConfigCheck& c, const std::function<void()>& step) {
   } catch (const PluginError& e) {
     keep(e.what());
   } catch (const MemoryBudgetError& e) {
+    keep(e.what());
+  } catch (const InputFileError& e) {
     keep(e.what());
   }
   return false;
