@@ -22,7 +22,7 @@ struct Options {
   std::string plot;
   std::string measured;
   std::optional<double> measured_theta_deg;
-  std::size_t measured_column = 0;
+  std::optional<std::size_t> measured_column;
 };
 
 void run(AppContext& context, const Options& o) {
@@ -82,7 +82,7 @@ void add_spectra_command(CLI::App& app, AppContext& context) {
   cmd->add_option("--measured-theta-deg", o->measured_theta_deg,
                   "Angle of incidence of the measurement (default: from the file, else 0)");
   cmd->add_option("--measured-column", o->measured_column,
-                  "Which reflectance column of a multi-sample file (0 = the first)")->capture_default_str();
+                  "Which reflectance column of a multi-sample file (0 = the first; default: the one named reflectance, else the first)");
   cmd->callback([&context, o] { run(context, *o); });
 }
 

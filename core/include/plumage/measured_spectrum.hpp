@@ -31,8 +31,9 @@ struct MeasuredSpectrum {
 
 struct MeasuredSpectrumOptions {
   // Several reflectance columns whose headers name no angle are several samples: this one is
-  // taken (0 = the first reflectance column).
-  std::size_t sample_column = 0;
+  // taken (0 = the first reflectance column); by default the one whose header names reflectance
+  // ("refl") if exactly one does, else the first.
+  std::optional<std::size_t> sample_column;
 };
 
 // Sanity limits of the reader (docs/architecture.md, "Readers"): a text spectrum is at most
@@ -44,7 +45,8 @@ inline constexpr std::size_t kMinMeasuredSpectrumPoints = 3;
 
 // Reads a measured spectrum. Accepts header and comment lines ('#' lines, any non-numeric lines
 // before the data, Ocean Optics ">>>>>Begin Spectral Data<<<<<" / ">>>>>End..." markers), comma,
-// semicolon, tab or whitespace delimiters (a decimal comma with ';', tab or whitespace), percent
+// semicolon, tab or whitespace delimiters (a decimal comma with ';', tab or whitespace), a names
+// line over a units line, a UTF-8 byte-order mark, percent
 // or fraction (a '%' / "percent" header, else any value > 1.5 → percent), nm or µm (all
 // wavelengths < 10 → µm), an angle column (theta, angle, AOI: one curve per angle) or angle
 // column headers ("R_0deg", "30°", "theta=45": one curve per column); a decreasing wavelength

@@ -33,7 +33,8 @@ struct Table {
   std::vector<std::string> header;  // empty without a header line matching the data's width
   std::vector<Row> rows;
   char delimiter = ',';
-  bool decimal_comma = false;
+  bool decimal_comma = false;  // ',' read as the decimal mark
+  bool saw_comma = false;      // ... and the data had one
 };
 
 std::string trim(const std::string& s) {
@@ -93,11 +94,11 @@ std::optional<double> parse_number(std::string field, bool decimal_comma) {
   return value;
 }
 
-// The delimiter of a data line: tab, else ';', else ',', else whitespace. A ',' is a decimal mark
-// with ';', tab or whitespace delimiters (European spreadsheet and spectrometer exports).
+// The delimiter of a data line: tab, else ';', else ',', else whitespace. With ';' or tab a ','
+// can only be a decimal mark (European spreadsheet and spectrometer exports), also in later rows.
 std::pair<char, bool> detect_delimiter(const std::string& line) {
-  if (line.find('\t') != std::string::npos) return {'\t', line.find(',') != std::string::npos};
-  if (line.find(';') != std::string::npos) return {';', line.find(',') != std::string::npos};
+  if (line.find('\t') != std::string::npos) return {'\t', true};
+  if (line.find(';') != std::string::npos) return {';', true};
   if (line.find(',') != std::string::npos) {
     // "400,5 12,3" is whitespace-delimited with decimal commas; "400,12.3" is comma-delimited.
     const bool spaced = trim(line).find_first_of(" ") != std::string::npos && line.find('.') == std::string::npos;
@@ -117,29 +118,43 @@ std::optional<std::vector<double>> numeric_row(const std::string& line, char del
   return values;
 }
 
+std::vector<std::string> header_names(const std::vector<std::string>& lines, char delimiter, std::size_t width) {
+  std::vector<std::string> names = split_fields(lines.back(), delimiter);
+  if (names.size() != width) return {};
+  if (lines.size() >= 2) {
+    const std::vector<std::string> above = split_fields(lines[lines.size() - 2], delimiter);
+    if (above.size() == width)
+      for (std::size_t c = 0; c < width; ++c) names[c] = above[c] + " " + names[c];
+  }
+  return names;
+}
+
 bool is_marker(const std::string& text, const char* word) {
   return text.rfind(">>>>>", 0) == 0 && lower(text).find(word) != std::string::npos;
 }
 
 // Header lines, then data rows: the first line that is all numbers starts the data; the last
-// non-comment line before it, if it has as many fields, names the columns.
+// line before it, if it has as many fields, names the columns (with the line above it, when that
+// has as many too: a names line over a units line, "Wave;Reflectance" over "[nm];[%]").
 Table read_table(const std::filesystem::path& file, const std::string& text) {
   const auto fail = [&](std::size_t line, const std::string& what) {
     throw InputFileError(file.string() + ":" + std::to_string(line), what);
   };
   Table table;
-  std::string header_line;
+  std::vector<std::string> header_lines;
   bool in_data = false;
   std::size_t width = 0;
+  // With a begin marker, everything before it is header, numbers or not ("Number of Pixels: 2048").
+  bool before_begin = lower(text).find(">>>>>begin") != std::string::npos;
   for (const Line& line : split_lines(text)) {
     const std::string t = trim(line.text);
     if (t.empty()) continue;
-    if (is_marker(t, "end")) {
-      if (in_data) break;
+    if (before_begin) {
+      before_begin = !is_marker(t, "begin");
       continue;
     }
-    if (is_marker(t, "begin")) {
-      header_line.clear();
+    if (is_marker(t, "end")) {
+      if (in_data) break;
       continue;
     }
     const bool comment = t.front() == '#';
@@ -147,7 +162,7 @@ Table read_table(const std::filesystem::path& file, const std::string& text) {
       const auto [delimiter, decimal_comma] = detect_delimiter(t);
       const auto values = comment ? std::nullopt : numeric_row(t, delimiter, decimal_comma);
       if (!values) {
-        header_line = comment ? trim(t.substr(1)) : t;
+        header_lines.push_back(comment ? trim(t.substr(1)) : t);
         continue;
       }
       in_data = true;
@@ -156,14 +171,15 @@ Table read_table(const std::filesystem::path& file, const std::string& text) {
       width = values->size();
       if (width > kMaxMeasuredSpectrumColumns)
         fail(line.number, std::to_string(width) + " columns (at most " + std::to_string(kMaxMeasuredSpectrumColumns) + ")");
-      const auto names = split_fields(header_line, delimiter);
-      if (names.size() == width) table.header = names;
+      if (!header_lines.empty()) table.header = header_names(header_lines, delimiter, width);
+      table.saw_comma = decimal_comma && t.find(',') != std::string::npos;
       table.rows.push_back({line.number, *values});
       continue;
     }
     if (comment) continue;
     const auto values = numeric_row(t, table.delimiter, table.decimal_comma);
     if (!values) fail(line.number, "not a row of numbers: '" + t.substr(0, 60) + "'");
+    table.saw_comma = table.saw_comma || (table.decimal_comma && t.find(',') != std::string::npos);
     if (values->size() != width)
       fail(line.number, std::to_string(values->size()) + " fields where the data has " + std::to_string(width));
     if (table.rows.size() == kMaxMeasuredSpectrumRows)
@@ -211,7 +227,7 @@ Layout choose_columns(const Table& table, const MeasuredSpectrumOptions& options
   const auto& h = table.header;
   if (!h.empty()) {
     for (std::size_t c = 0; c < width; ++c) {
-      if (names_any(h[c], {"wavelength", "lambda", "nm", "wl"}) && !names_any(h[c], {"%", "refl"})) {
+      if (names_any(h[c], {"wave", "lambda", "nm", "wl"}) && !names_any(h[c], {"%", "refl"})) {
         layout.wavelength = c;
         break;
       }
@@ -231,10 +247,20 @@ Layout choose_columns(const Table& table, const MeasuredSpectrumOptions& options
     layout.angles_in_headers = true;
     return layout;
   }
-  if (options.sample_column >= candidates.size())
-    throw InputFileError(out.file.string(), "reflectance column " + std::to_string(options.sample_column) +
+  // Without a choice, the column named reflectance if exactly one is (spectrometer exports put
+  // sample, dark and reference counts beside it), else the first.
+  std::size_t chosen = 0;
+  if (options.sample_column) {
+    chosen = *options.sample_column;
+  } else if (!h.empty()) {
+    const auto named = std::count_if(candidates.begin(), candidates.end(), [&](std::size_t c) { return names_any(h[c], {"refl"}); });
+    if (named == 1)
+      chosen = static_cast<std::size_t>(std::find_if(candidates.begin(), candidates.end(), [&](std::size_t c) { return names_any(h[c], {"refl"}); }) - candidates.begin());
+  }
+  if (chosen >= candidates.size())
+    throw InputFileError(out.file.string(), "reflectance column " + std::to_string(chosen) +
                                                 " asked for; the file has " + std::to_string(candidates.size()));
-  layout.reflectance = {candidates[options.sample_column]};
+  layout.reflectance = {candidates[chosen]};
   layout.angles_in_headers = !h.empty() && !layout.angle && header_angle(h[layout.reflectance[0]]).has_value();
   if (candidates.size() > 1) {
     out.notes.push_back(std::to_string(candidates.size()) + " reflectance columns without angles (samples): took column " +
@@ -327,10 +353,12 @@ void build_curves(MeasuredSpectrum& out, const Table& table, const Layout& layou
 MeasuredSpectrum read_measured_spectrum(const std::filesystem::path& file, const MeasuredSpectrumOptions& options) {
   MeasuredSpectrum out;
   out.file = file;
-  const Table table = read_table(file, read_input_file(file, "measured spectrum", kMaxMeasuredSpectrumBytes));
+  std::string text = read_input_file(file, "measured spectrum", kMaxMeasuredSpectrumBytes);
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // the UTF-8 byte-order mark of spreadsheet exports
+  const Table table = read_table(file, text);
   const char* delimiter = table.delimiter == ',' ? "comma" : table.delimiter == ';' ? "semicolon"
                           : table.delimiter == '\t' ? "tab" : "whitespace";
-  out.notes.push_back(std::string(delimiter) + "-delimited" + (table.decimal_comma ? ", decimal comma" : "") + ", " +
+  out.notes.push_back(std::string(delimiter) + "-delimited" + (table.saw_comma ? ", decimal comma" : "") + ", " +
                       std::to_string(table.rows.size()) + " data rows from line " +
                       std::to_string(table.rows.front().line));
   const Layout layout = choose_columns(table, options, out);
