@@ -1,10 +1,9 @@
 // Measured spectra (issue 25): the reader's dialects (delimiters, decimal comma, percent, µm,
 // spectrometer markers, angle columns, samples), its refusals with file:line, and compare_spectra
 // on an analytic pair.
-#include <catch2/catch.hpp>
-
 #include <unistd.h>
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -108,14 +107,17 @@ TEST_CASE("measured spectrum: a names line over a units line, counts beside the 
 }
 
 TEST_CASE("measured spectrum: a UTF-8 byte-order mark before the first data row", "[measured]") {
-  const auto m = read_measured_spectrum(write_spectrum("l.csv", "\xEF\xBB\xBF" "400,0.1\n410,0.2\n420,0.3\n"));
+  const auto m = read_measured_spectrum(write_spectrum("l.csv",
+                                                       "\xEF\xBB\xBF"
+                                                       "400,0.1\n410,0.2\n420,0.3\n"));
   REQUIRE(m.curves.size() == 1);
   CHECK(m.curves[0].lambda_nm.size() == 3);
   CHECK(has_note(m, "from line 1"));
 }
 
 TEST_CASE("measured spectrum: micrometres, whitespace, '#' comments", "[measured]") {
-  const auto m = read_measured_spectrum(write_spectrum("e.dat", "# um  R\n0.40  0.2\n# a note\n0.45   0.3\n0.50 0.4\n"));
+  const auto m =
+      read_measured_spectrum(write_spectrum("e.dat", "# um  R\n0.40  0.2\n# a note\n0.45   0.3\n0.50 0.4\n"));
   REQUIRE(m.curves.size() == 1);
   CHECK(m.curves[0].lambda_nm[0] == Approx(400));
   CHECK(m.curves[0].lambda_nm[2] == Approx(500));
@@ -165,12 +167,14 @@ TEST_CASE("measured spectrum: angles in the column headers, an angle column, sam
 }
 
 TEST_CASE("measured spectrum: bad input is refused with file:line", "[measured]") {
-  CHECK_THAT(refusal("j1.csv", "nm,R\n400,0.1\n410,0.2\n405,0.3\n420,0.4\n"), Contains("j1.csv:4: wavelengths not monotonic"));
+  CHECK_THAT(refusal("j1.csv", "nm,R\n400,0.1\n410,0.2\n405,0.3\n420,0.4\n"),
+             Contains("j1.csv:4: wavelengths not monotonic"));
   CHECK_THAT(refusal("j2.csv", "nm,R\n400,0.1\n410,-0.2\n420,0.3\n"), Contains("j2.csv:3: negative reflectance"));
   CHECK_THAT(refusal("j3.csv", "nm,R\n400,0.1\n410,0.2\n"), Contains("j3.csv:2: R: 2 points (at least 3"));
   CHECK_THAT(refusal("j4.csv", "just words\nand more words\n"), Contains("j4.csv: no numeric data"));
   CHECK_THAT(refusal("j5.csv", ""), Contains("no numeric data"));
-  CHECK_THAT(refusal("j6.csv", "400,0.1\n410,0.2\n420\n430,0.4\n"), Contains("j6.csv:3: 1 fields where the data has 2"));
+  CHECK_THAT(refusal("j6.csv", "400,0.1\n410,0.2\n420\n430,0.4\n"),
+             Contains("j6.csv:3: 1 fields where the data has 2"));
   CHECK_THAT(refusal("j7.csv", "400,0.1\n410,oops\n420,0.3\n"), Contains("j7.csv:2: not a row of numbers"));
   CHECK_THAT(refusal("j8.csv", "400,0.1\n410,nan\n420,0.3\n"), Contains("j8.csv:2: reflectance is not finite"));
   CHECK_THAT(refusal("j9.csv", "400\n410\n420\n"), Contains("j9.csv:1: one column"));

@@ -2,13 +2,12 @@
 // measured file written here; the comparison printed, the picture and the CSV's measured column
 // written; a bad measurement refused with exit 2 and file:line before anything is computed.
 #include <catch2/catch.hpp>
-
-#include "cli_run.hpp"
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "cli_run.hpp"
 
 namespace fs = std::filesystem;
 using plumage::cli_test::Result;
@@ -43,8 +42,9 @@ TEST_CASE("spectra --measured prints the comparison, draws it and adds it to the
   const fs::path measured = write_file("dove.csv", european_spectrum());
   const fs::path png = plumage::cli_test::fresh_scratch_path(kSuite, "overlay.png");
   const fs::path csv = plumage::cli_test::fresh_scratch_path(kSuite, "overlay.csv");
-  const Result r = run("spectra " + kRockDove + " --lambda-nm 400:700:10 --theta-deg 0 --measured " + measured.string() +
-                       " --measured-theta-deg 30 --plot " + png.string() + " --csv " + csv.string());
+  const Result r =
+      run("spectra " + kRockDove + " --lambda-nm 400:700:10 --theta-deg 0 --measured " + measured.string() +
+          " --measured-theta-deg 30 --plot " + png.string() + " --csv " + csv.string());
   INFO(r.output);
   REQUIRE(r.status == 0);
   CHECK(r.output.find("semicolon-delimited, decimal comma") != std::string::npos);
@@ -70,4 +70,13 @@ TEST_CASE("spectra --measured refuses a bad file with exit 2 and file:line, writ
   CHECK_FALSE(fs::exists(png));
   const Result none = run("spectra " + kRockDove + " --measured " + (measured.string() + ".missing"));
   CHECK(none.status == 2);
+  CHECK(none.output.find("bad.csv.missing") != std::string::npos);
+  // The measurement is an input: --csv may not overwrite it; an angle outside [0, 90] is refused.
+  const fs::path good = write_file("good.csv", "400,0.1\n500,0.2\n600,0.3\n");
+  const Result overwrite = run("spectra " + kRockDove + " --measured " + good.string() + " --csv " + good.string());
+  CHECK(overwrite.status == 2);
+  CHECK(plumage::cli_test::file_bytes(good) == "400,0.1\n500,0.2\n600,0.3\n");
+  const Result angle = run("spectra " + kRockDove + " --measured " + good.string() + " --measured-theta-deg 95");
+  CHECK(angle.status == 2);
+  CHECK(angle.output.find("[0, 90]") != std::string::npos);
 }

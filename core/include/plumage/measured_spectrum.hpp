@@ -53,8 +53,7 @@ inline constexpr std::size_t kMinMeasuredSpectrumPoints = 3;
 // column is reversed. Throws InputFileError naming file:line and what is wrong: no numeric data,
 // a field that is not a number, a row with another field count, wavelengths not monotonic or out
 // of range, negative or non-finite reflectance, too few points, a size limit exceeded.
-MeasuredSpectrum read_measured_spectrum(const std::filesystem::path& file,
-                                        const MeasuredSpectrumOptions& options = {});
+MeasuredSpectrum read_measured_spectrum(const std::filesystem::path& file, const MeasuredSpectrumOptions& options = {});
 
 // The measurement's angles resolved for a comparison: curves without an angle get `theta_deg`
 // (normal incidence, 0°, when not given; noted); when the curves have angles and `theta_deg` is
@@ -82,8 +81,7 @@ struct SpectrumComparison {
 // Compares a predicted spectrum (strictly increasing λ) with a measured curve. Throws Error when
 // the two share fewer than 3 predicted wavelengths.
 SpectrumComparison compare_spectra(const std::vector<double>& predicted_lambda_nm,
-                                   const std::vector<double>& predicted_reflectance,
-                                   const MeasuredCurve& measured);
+                                   const std::vector<double>& predicted_reflectance, const MeasuredCurve& measured);
 
 // The measured curve linearly interpolated at `lambda_nm`; none outside its range.
 std::optional<double> measured_reflectance_at(const MeasuredCurve& measured, double lambda_nm);

@@ -2,6 +2,8 @@
 // spreadsheets and spectrometer software, whose dialects differ in delimiter, decimal mark,
 // header lines, units and layout; the file is refused with file:line rather than guessed at
 // where the layout is ambiguous or the values are not a reflectance spectrum.
+#include "plumage/measured_spectrum.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <charconv>
@@ -11,7 +13,6 @@
 #include <sstream>
 
 #include "plumage/input_file.hpp"
-#include "plumage/measured_spectrum.hpp"
 
 namespace plumage {
 
@@ -170,7 +171,8 @@ Table read_table(const std::filesystem::path& file, const std::string& text) {
       table.decimal_comma = decimal_comma;
       width = values->size();
       if (width > kMaxMeasuredSpectrumColumns)
-        fail(line.number, std::to_string(width) + " columns (at most " + std::to_string(kMaxMeasuredSpectrumColumns) + ")");
+        fail(line.number,
+             std::to_string(width) + " columns (at most " + std::to_string(kMaxMeasuredSpectrumColumns) + ")");
       if (!header_lines.empty()) table.header = header_names(header_lines, delimiter, width);
       table.saw_comma = decimal_comma && t.find(',') != std::string::npos;
       table.rows.push_back({line.number, *values});
@@ -214,15 +216,16 @@ bool is_angle_column(const std::string& name) {
 
 struct Layout {
   std::size_t wavelength = 0;
-  std::optional<std::size_t> angle;     // an angle per row
+  std::optional<std::size_t> angle;      // an angle per row
   std::vector<std::size_t> reflectance;  // the columns taken
   bool angles_in_headers = false;
 };
 
 Layout choose_columns(const Table& table, const MeasuredSpectrumOptions& options, MeasuredSpectrum& out) {
   const std::size_t width = table.rows.front().values.size();
-  if (width < 2) throw InputFileError(out.file.string() + ":" + std::to_string(table.rows.front().line),
-                                      "one column: a spectrum needs wavelength and reflectance columns");
+  if (width < 2)
+    throw InputFileError(out.file.string() + ":" + std::to_string(table.rows.front().line),
+                         "one column: a spectrum needs wavelength and reflectance columns");
   Layout layout;
   const auto& h = table.header;
   if (!h.empty()) {
@@ -240,8 +243,9 @@ Layout choose_columns(const Table& table, const MeasuredSpectrumOptions& options
     if (c != layout.wavelength && c != layout.angle) candidates.push_back(c);
   if (candidates.empty())
     throw InputFileError(out.file.string() + ":" + std::to_string(table.rows.front().line), "no reflectance column");
-  const bool all_angled = !h.empty() && !layout.angle &&
-                          std::all_of(candidates.begin(), candidates.end(), [&](std::size_t c) { return header_angle(h[c]).has_value(); });
+  const bool all_angled =
+      !h.empty() && !layout.angle &&
+      std::all_of(candidates.begin(), candidates.end(), [&](std::size_t c) { return header_angle(h[c]).has_value(); });
   if (candidates.size() > 1 && all_angled) {
     layout.reflectance = candidates;
     layout.angles_in_headers = true;
@@ -253,9 +257,12 @@ Layout choose_columns(const Table& table, const MeasuredSpectrumOptions& options
   if (options.sample_column) {
     chosen = *options.sample_column;
   } else if (!h.empty()) {
-    const auto named = std::count_if(candidates.begin(), candidates.end(), [&](std::size_t c) { return names_any(h[c], {"refl"}); });
+    const auto named =
+        std::count_if(candidates.begin(), candidates.end(), [&](std::size_t c) { return names_any(h[c], {"refl"}); });
     if (named == 1)
-      chosen = static_cast<std::size_t>(std::find_if(candidates.begin(), candidates.end(), [&](std::size_t c) { return names_any(h[c], {"refl"}); }) - candidates.begin());
+      chosen = static_cast<std::size_t>(
+          std::find_if(candidates.begin(), candidates.end(), [&](std::size_t c) { return names_any(h[c], {"refl"}); }) -
+          candidates.begin());
   }
   if (chosen >= candidates.size())
     throw InputFileError(out.file.string(), "reflectance column " + std::to_string(chosen) +
@@ -263,7 +270,8 @@ Layout choose_columns(const Table& table, const MeasuredSpectrumOptions& options
   layout.reflectance = {candidates[chosen]};
   layout.angles_in_headers = !h.empty() && !layout.angle && header_angle(h[layout.reflectance[0]]).has_value();
   if (candidates.size() > 1) {
-    out.notes.push_back(std::to_string(candidates.size()) + " reflectance columns without angles (samples): took column " +
+    out.notes.push_back(std::to_string(candidates.size()) +
+                        " reflectance columns without angles (samples): took column " +
                         std::to_string(layout.reflectance[0] + 1) +
                         (h.empty() ? std::string() : " '" + h[layout.reflectance[0]] + "'"));
   }
@@ -282,7 +290,8 @@ void build_curves(MeasuredSpectrum& out, const Table& table, const Layout& layou
   };
   const auto& rows = table.rows;
   const auto& h = table.header;
-  const bool micrometres = std::all_of(rows.begin(), rows.end(), [&](const Row& r) { return r.values[layout.wavelength] < 10.0; });
+  const bool micrometres =
+      std::all_of(rows.begin(), rows.end(), [&](const Row& r) { return r.values[layout.wavelength] < 10.0; });
   if (micrometres) out.notes.push_back("wavelengths all below 10: read as micrometres, converted to nm");
   bool percent = false;
   for (std::size_t c : layout.reflectance) percent = percent || (!h.empty() && says_percent(h[c]));
@@ -291,7 +300,8 @@ void build_curves(MeasuredSpectrum& out, const Table& table, const Layout& layou
   } else {
     for (const Row& r : rows)
       for (std::size_t c : layout.reflectance) percent = percent || r.values[c] > 1.5;
-    out.notes.push_back(percent ? "reflectance in percent (values above 1.5)" : "reflectance as a fraction (no value above 1.5)");
+    out.notes.push_back(percent ? "reflectance in percent (values above 1.5)"
+                                : "reflectance as a fraction (no value above 1.5)");
   }
   // (curve index, row lines) in order of first appearance
   std::map<double, std::size_t> by_angle;
@@ -299,7 +309,8 @@ void build_curves(MeasuredSpectrum& out, const Table& table, const Layout& layou
   const auto curve_for = [&](const Row& r, std::size_t k) -> std::size_t {
     if (!layout.angle) return k;
     const double theta = r.values[*layout.angle];
-    if (!std::isfinite(theta) || theta < -90 || theta > 90) fail(r.line, "angle " + std::to_string(theta) + "° outside [-90, 90]");
+    if (!std::isfinite(theta) || theta < -90 || theta > 90)
+      fail(r.line, "angle " + std::to_string(theta) + "° outside [-90, 90]");
     const auto [it, added] = by_angle.emplace(theta, out.curves.size());
     if (added) {
       std::ostringstream label;
@@ -339,7 +350,8 @@ void build_curves(MeasuredSpectrum& out, const Table& table, const Layout& layou
     const bool decreasing = l[1] < l[0];
     for (std::size_t j = 1; j < l.size(); ++j) {
       if (decreasing ? !(l[j] < l[j - 1]) : !(l[j] > l[j - 1]))
-        fail(lines[i][j], "wavelengths not monotonic (" + std::to_string(l[j - 1]) + " then " + std::to_string(l[j]) + " nm)");
+        fail(lines[i][j],
+             "wavelengths not monotonic (" + std::to_string(l[j - 1]) + " then " + std::to_string(l[j]) + " nm)");
     }
     if (decreasing) {
       std::reverse(curve.lambda_nm.begin(), curve.lambda_nm.end());
@@ -356,8 +368,10 @@ MeasuredSpectrum read_measured_spectrum(const std::filesystem::path& file, const
   std::string text = read_input_file(file, "measured spectrum", kMaxMeasuredSpectrumBytes);
   if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);  // the UTF-8 byte-order mark of spreadsheet exports
   const Table table = read_table(file, text);
-  const char* delimiter = table.delimiter == ',' ? "comma" : table.delimiter == ';' ? "semicolon"
-                          : table.delimiter == '\t' ? "tab" : "whitespace";
+  const char* delimiter = table.delimiter == ','    ? "comma"
+                          : table.delimiter == ';'  ? "semicolon"
+                          : table.delimiter == '\t' ? "tab"
+                                                    : "whitespace";
   out.notes.push_back(std::string(delimiter) + "-delimited" + (table.saw_comma ? ", decimal comma" : "") + ", " +
                       std::to_string(table.rows.size()) + " data rows from line " +
                       std::to_string(table.rows.front().line));

@@ -41,8 +41,7 @@ std::optional<double> measured_reflectance_at(const MeasuredCurve& measured, dou
 }
 
 SpectrumComparison compare_spectra(const std::vector<double>& predicted_lambda_nm,
-                                   const std::vector<double>& predicted_reflectance,
-                                   const MeasuredCurve& measured) {
+                                   const std::vector<double>& predicted_reflectance, const MeasuredCurve& measured) {
   if (predicted_lambda_nm.size() != predicted_reflectance.size())
     throw Error("compare_spectra: " + std::to_string(predicted_lambda_nm.size()) + " wavelengths but " +
                 std::to_string(predicted_reflectance.size()) + " reflectances");
@@ -95,7 +94,8 @@ MeasuredSpectrum with_measurement_angle(MeasuredSpectrum measured, std::optional
   const bool any_angle = std::any_of(measured.curves.begin(), measured.curves.end(),
                                      [](const MeasuredCurve& c) { return c.theta_deg.has_value(); });
   if (any_angle && theta_deg) {
-    std::erase_if(measured.curves, [&](const MeasuredCurve& c) { return !c.theta_deg || std::abs(*c.theta_deg - *theta_deg) > 1e-6; });
+    std::erase_if(measured.curves,
+                  [&](const MeasuredCurve& c) { return !c.theta_deg || std::abs(*c.theta_deg - *theta_deg) > 1e-6; });
     if (measured.curves.empty()) {
       std::ostringstream what;
       what << "no measured curve at theta = " << *theta_deg << "°";
