@@ -115,6 +115,13 @@ TEST_CASE("measured spectrum: a UTF-8 byte-order mark before the first data row"
   CHECK(has_note(m, "from line 1"));
 }
 
+TEST_CASE("measured spectrum: a lone number before the data is header", "[measured]") {
+  const auto m = read_measured_spectrum(write_spectrum("m.txt", "Pixels\n2048\n400 0.1\n410 0.2\n420 0.3\n"));
+  REQUIRE(m.curves.size() == 1);
+  CHECK(m.curves[0].lambda_nm.size() == 3);
+  CHECK(has_note(m, "from line 3"));
+}
+
 TEST_CASE("measured spectrum: micrometres, whitespace, '#' comments", "[measured]") {
   const auto m =
       read_measured_spectrum(write_spectrum("e.dat", "# um  R\n0.40  0.2\n# a note\n0.45   0.3\n0.50 0.4\n"));
@@ -179,6 +186,10 @@ TEST_CASE("measured spectrum: bad input is refused with file:line", "[measured]"
   CHECK_THAT(refusal("j8.csv", "400,0.1\n410,nan\n420,0.3\n"), Contains("j8.csv:2: reflectance is not finite"));
   CHECK_THAT(refusal("j9.csv", "400\n410\n420\n"), Contains("j9.csv:1: one column"));
   CHECK_THAT(refusal("j10.csv", "0,0.1\n410,0.2\n420,0.3\n"), Contains("j10.csv:1: wavelength"));
+  std::string wide = "400";
+  for (int c = 0; c < 1000; ++c) wide += ",0.1";
+  CHECK_THAT(refusal("j11.csv", wide + "\n"), Contains("j11.csv:1: 1001 columns (at most 1000)"));
+  CHECK_THAT(refusal("j12.csv", "theta,nm,R\n0,400,0.1\n0,410,0.2\n95,400,0.3\n"), Contains("j12.csv:4: angle"));
   CHECK_THROWS_AS(read_measured_spectrum(fs::temp_directory_path() / "plumage_no_such_spectrum.csv"), InputFileError);
   CHECK_THROWS_AS(read_measured_spectrum(fs::temp_directory_path()), InputFileError);  // a directory
 }

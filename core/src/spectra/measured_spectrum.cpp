@@ -143,6 +143,7 @@ Table read_table(const std::filesystem::path& file, const std::string& text) {
   };
   Table table;
   std::vector<std::string> header_lines;
+  std::size_t single_number_line = 0;
   bool in_data = false;
   std::size_t width = 0;
   // With a begin marker, everything before it is header, numbers or not ("Number of Pixels: 2048").
@@ -162,7 +163,9 @@ Table read_table(const std::filesystem::path& file, const std::string& text) {
     if (!in_data) {
       const auto [delimiter, decimal_comma] = detect_delimiter(t);
       const auto values = comment ? std::nullopt : numeric_row(t, delimiter, decimal_comma);
-      if (!values) {
+      // A lone number before the data is metadata ("2048" pixels), not a one-column spectrum.
+      if (!values || values->size() < 2) {
+        if (values && !single_number_line) single_number_line = line.number;
         header_lines.push_back(comment ? trim(t.substr(1)) : t);
         continue;
       }
@@ -188,6 +191,8 @@ Table read_table(const std::filesystem::path& file, const std::string& text) {
       fail(line.number, "more than " + std::to_string(kMaxMeasuredSpectrumRows) + " data rows");
     table.rows.push_back({line.number, *values});
   }
+  if (table.rows.empty() && single_number_line)
+    fail(single_number_line, "one column: a spectrum needs wavelength and reflectance columns");
   if (table.rows.empty()) throw InputFileError(file.string(), "no numeric data (no line of numbers found)");
   return table;
 }
@@ -222,10 +227,7 @@ struct Layout {
 };
 
 Layout choose_columns(const Table& table, const MeasuredSpectrumOptions& options, MeasuredSpectrum& out) {
-  const std::size_t width = table.rows.front().values.size();
-  if (width < 2)
-    throw InputFileError(out.file.string() + ":" + std::to_string(table.rows.front().line),
-                         "one column: a spectrum needs wavelength and reflectance columns");
+  const std::size_t width = table.rows.front().values.size();  // ≥ 2: read_table
   Layout layout;
   const auto& h = table.header;
   if (!h.empty()) {
