@@ -2,7 +2,8 @@
 """Draws a long-format CSV (panel, series, x, y) as a grid of line-chart panels.
 
 Called by the plumage executable for every line chart it writes (`--plot`). One panel per
-distinct `panel` value, one line per `series` within a panel, in file order.
+distinct `panel` value, one line per `series` within a panel, in file order; a series whose rows
+have style "dashed" (a measurement beside predictions) is drawn dashed.
 """
 import argparse
 import csv
@@ -27,7 +28,8 @@ def main():
     with open(args.csv, newline="") as f:
         for row in csv.DictReader(f):
             series = panels.setdefault(row["panel"], {})
-            xs, ys = series.setdefault(row["series"], ([], []))
+            xs, ys, style = series.setdefault(row["series"], ([], [], {}))
+            style["dashed"] = row.get("style") == "dashed"
             xs.append(float(row["x"]))
             ys.append(float(row["y"]))
 
@@ -36,8 +38,8 @@ def main():
     rows = math.ceil(n / cols)
     fig, axes = plt.subplots(rows, cols, figsize=(6.0 * cols, 3.6 * rows), squeeze=False)
     for ax, (panel, series) in zip(axes.flat, panels.items()):
-        for name, (xs, ys) in series.items():
-            ax.plot(xs, ys, label=name, linewidth=1.4)
+        for name, (xs, ys, style) in series.items():
+            ax.plot(xs, ys, label=name, linewidth=1.4, linestyle="--" if style["dashed"] else "-")
         ax.set_title(panel, fontsize=10)
         ax.set_xlabel(args.xlabel)
         ax.set_ylabel(args.ylabel)

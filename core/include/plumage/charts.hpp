@@ -13,6 +13,7 @@ struct LineChart {
     std::string panel;
     std::string series;
     double x = 0, y = 0;
+    bool dashed = false;  // drawn dashed (a measurement beside predictions)
   };
   std::string title;
   std::string x_label;

@@ -73,9 +73,9 @@ void draw_line_chart(const LineChart& chart, const fs::path& png) {
   const fs::path csv = fs::path(png).concat(".data.csv.tmp");
   {
     std::ofstream out(csv);
-    out << "panel,series,x,y\n" << std::setprecision(10);
+    out << "panel,series,x,y,style\n" << std::setprecision(10);
     for (const auto& p : chart.points) {
-      out << '"' << p.panel << "\",\"" << p.series << "\"," << p.x << ',' << p.y << '\n';
+      out << '"' << p.panel << "\",\"" << p.series << "\"," << p.x << ',' << p.y << ',' << (p.dashed ? "dashed" : "solid") << '\n';
     }
     if (!out) throw Error(csv.string() + ": cannot write chart data");
   }
