@@ -6,7 +6,11 @@
 # `make fuzz` runs the long campaign (scripts/fuzz_campaign.sh); fuzz/README.md has the details.
 include(ExternalProject)
 
-set(PLUMAGE_FUZZ_HARNESSES species crystal scene comparison plm plt ffs journal merge)
+# The one list of harnesses, fuzz/harnesses.txt (also read by fuzz/CMakeLists.txt and make fuzz).
+file(READ ${PROJECT_SOURCE_DIR}/fuzz/harnesses.txt PLUMAGE_FUZZ_HARNESSES)
+string(STRIP "${PLUMAGE_FUZZ_HARNESSES}" PLUMAGE_FUZZ_HARNESSES)
+string(REPLACE " " ";" PLUMAGE_FUZZ_HARNESSES "${PLUMAGE_FUZZ_HARNESSES}")
+set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/fuzz/harnesses.txt)
 
 find_program(PLUMAGE_FUZZ_CXX NAMES clang++-14 clang++ DOC "clang++ for the libFuzzer harnesses")
 if(PLUMAGE_FUZZ_CXX AND NOT DEFINED PLUMAGE_FUZZ_WORKS)

@@ -10,7 +10,8 @@ build=${1:-build}
 seconds=${2:-600}
 shift $(( $# < 2 ? $# : 2 ))
 harnesses=("$@")
-[ ${#harnesses[@]} -eq 0 ] && harnesses=(species crystal scene comparison plm plt ffs journal merge)
+# shellcheck disable=SC2207  # the one list of harnesses, one word each
+[ ${#harnesses[@]} -eq 0 ] && harnesses=($(cat "$(dirname "$0")/../fuzz/harnesses.txt"))
 src=$(cd "$(dirname "$0")/.." && pwd)
 bin=$build/fuzz
 if [ ! -x "$bin/fuzz_${harnesses[0]}" ]; then
