@@ -15,5 +15,6 @@ PYBIND11_MODULE(_plumage, m) {
   bind_characterize(m);
   bind_material(m);
   bind_tables(m);
+  bind_measured(m);
   bind_render(m);
 }

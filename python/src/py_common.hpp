@@ -74,6 +74,7 @@ void bind_compare(py::module_& m);
 void bind_characterize(py::module_& m);
 void bind_material(py::module_& m);
 void bind_tables(py::module_& m);
+void bind_measured(py::module_& m);
 void bind_render(py::module_& m);
 
 }  // namespace plumage::python
