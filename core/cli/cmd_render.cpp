@@ -93,6 +93,8 @@ void print_written(const RenderedView& v) {
 }
 
 void run(AppContext& context, const Options& o) {
+  // An empty folder tells render_view to write nothing (the library's in-memory render).
+  if (o.out.empty()) throw UsageError("--out: give the folder to write the images to");
   check_output_folder_flag("--out", o.out);
   const auto wall0 = std::chrono::steady_clock::now();
   RenderJob job(o.scene, job_options(o), context.registry());
