@@ -135,7 +135,9 @@ TEST_CASE("svg import: the film's far field is the strip's and validation_shape 
   REQUIRE(a.units.size() == b.units.size());
   REQUIRE(a.units.size() == 2);
   for (std::size_t u = 0; u < a.units.size(); ++u) {
-    CHECK(worst_difference(a.units[u].instances.at(0), b.units[u].instances.at(0)) <= 1e-12);
+    const double d = worst_difference(a.units[u].instances.at(0), b.units[u].instances.at(0));
+    WARN("svg film against validation_shape slab, unit " << u << ": relative difference " << d);
+    CHECK(d <= 1e-12);
   }
 
   // The strip of test_approximate_solver.cpp: a flat top of 30 nm edges under fixed coefficients.
@@ -147,7 +149,9 @@ TEST_CASE("svg import: the film's far field is the strip's and validation_shape 
   const double phis[1] = {deg_to_rad(20.0)};
   const FarField fs_svg = solver.solve(*solver.prepare(cs, reflection), 550.0, deg_to_rad(20.0), phis, phi_o).front();
   const FarField fs_strip = solver.solve(*solver.prepare(strip, reflection), 550.0, deg_to_rad(20.0), phis, phi_o).front();
-  CHECK(worst_difference(fs_svg, fs_strip) <= 1e-12);
+  const double d = worst_difference(fs_svg, fs_strip);
+  WARN("svg film against the strip: relative difference " << d);
+  CHECK(d <= 1e-12);
 }
 
 namespace {
@@ -195,5 +199,36 @@ TEST_CASE("svg import: inner regions that are not layers give no layered model",
   CHECK_THAT(cs.label, Catch::Contains("no layered model") && Catch::Contains("granule"));
   REQUIRE(cs.regions.size() == 2);
   CHECK(cs.regions[1].role == RegionRole::melanosome);
+  CHECK(validate(cs).empty());
+}
+
+TEST_CASE("svg import: relative commands, id prefixes and nesting", "[svg-import]") {
+  SvgImportOptions o = film_options();
+  // The longest id prefix wins over a shorter one and over the fill.
+  o.materials.push_back({"air", Material::air()});
+  o.materials.push_back({"air-in-melanin", Material::keratin()});
+  const std::string text = film_svg(
+      "<path id=\"granule\" fill=\"#000000\" d=\"m 2800,100 l 400,0 0,300 -400,0 Z\"/>\n"
+      "<polygon id=\"air-1\" fill=\"#000000\" points=\"2900,200 3100,200 3100,300 2900,300\"/>\n"
+      "<polygon id=\"air-in-melanin-2\" fill=\"#000000\" points=\"2950,220 3000,220 3000,260 2950,260\"/>");
+  const CrossSection cs = parse_svg_cross_section(text, "nested.svg", o);
+  REQUIRE(cs.regions.size() == 4);
+  CHECK(cs.regions[1].material.kind() == Material::Kind::melanin);  // granule, by fill
+  CHECK(cs.regions[2].material.kind() == Material::Kind::air);      // air-1
+  CHECK(cs.regions[3].material.kind() == Material::Kind::keratin);  // air-in-melanin-2
+  CHECK(cs.regions[1].parent == 0);
+  CHECK(cs.regions[2].parent == 1);
+  CHECK(cs.regions[3].parent == 2);
+  // m/l relative to the current point: the granule spans x 2800..3200, y 100..400 (z −100..−400).
+  double x_min = 1e9, x_max = -1e9, z_min = 1e9, z_max = -1e9;
+  for (const Vec2& v : cs.regions[1].outline) {
+    x_min = std::min(x_min, v.x), x_max = std::max(x_max, v.x);
+    z_min = std::min(z_min, v.z), z_max = std::max(z_max, v.z);
+  }
+  CHECK(x_min == -200.0);
+  CHECK(x_max == 200.0);
+  CHECK(z_min == -400.0);
+  CHECK(z_max == -100.0);
+  CHECK(signed_area(cs.regions[1].outline) > 0.0);
   CHECK(validate(cs).empty());
 }
