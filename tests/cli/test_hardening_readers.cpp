@@ -200,3 +200,20 @@ TEST_CASE("readers CLI: a damaged imported .xsec exits 2 naming the file and the
   CHECK(checked.status == 2);
   CHECK_THAT(checked.output, Catch::Contains((dir / "cut-0.xsec").string() + ": line ") && Catch::Contains("error(s)"));
 }
+
+TEST_CASE("readers CLI: a bad SVG cross section exits 2 naming the file and the element", "[hardening-readers]") {
+  // Issue 25 (c): a species whose structure is svg_file over an outline left open.
+  const fs::path dir = scratch("svg");
+  write_bytes(dir / "open-0.svg",
+              "<svg viewBox=\"0 0 6000 600\">\n<rect id=\"cortex\" width=\"6000\" height=\"600\" fill=\"#ccc\"/>\n"
+              "<path id=\"film\" fill=\"#000\" d=\"M 0,500 h 6000 v 100 H 0\"/>\n</svg>\n");
+  write_bytes(dir / "traced.yaml",
+              "species: traced\nreflection: {model: multilayer}\n"
+              "structure: {generator: svg_file, files: \"open-{index}.svg\", um_per_unit: 0.001,\n"
+              "            materials: {\"#ccc\": keratin, \"#000\": melanin}}\n");
+  const Result r = run("geometry " + (dir / "traced.yaml").string() + " --no-svg --no-png --out " + (dir / "out").string());
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains((dir / "open-0.svg").string() + ": element 'film' (line 3): open outline"));
+  CHECK_FALSE(fs::exists(dir / "out" / "traced-0.xsec"));
+}

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <optional>
 #include <utility>
+#include <vector>
 
 #include "plumage/cross_section.hpp"
 #include "plumage/image.hpp"
@@ -62,5 +63,34 @@ MemoryEstimate estimate_picture_memory(const CrossSection& section, const SvgOpt
 // Refuses (MemoryBudgetError, exit status 2) a picture over the PNG writer's 4 GiB raster limit,
 // naming the --pixels-per-um that would fit.
 void check_picture_size(const CrossSection& section, const SvgOptions& options = {});
+
+}  // namespace plumage
+
+namespace plumage {
+
+// How an SVG traced over a TEM image becomes a cross section (read_svg_cross_section).
+struct SvgImportOptions {
+  // Length of one SVG user unit, µm; or, without it, the length of the element with id
+  // "scale_bar" (a <line>, or the first-to-last point of a <path>/<polyline>) is `scale_bar_um`.
+  std::optional<double> um_per_unit;
+  std::optional<double> scale_bar_um;
+  // Material of each outline: a key that is a prefix of the element's id (the longest wins),
+  // else a key equal to its fill colour (attribute or style="fill:...", compared lower-case).
+  std::vector<std::pair<std::string, Material>> materials;
+  // Longest edge of the top, bottom and inner outlines after import, nm (edges are split evenly).
+  double max_segment_nm = 10.0;
+};
+
+// An SVG (docs/formats.md, "Cross sections from SVG") as a cross section: every closed <path>
+// (M L H V Z, absolute and relative), <polygon> and <rect> is a region; the largest is the body,
+// the others nest by containment. y is flipped (z up), x centred on the body, z = 0 at its
+// highest point. top / bottom are the body outline's chains above and below its leftmost and
+// rightmost vertices. A layered model is made when every inner region spans the body's width (a
+// layer); otherwise none (the label says so) and only the full-wave solver can use the section.
+// Refuses (InputFileError, "file: element 'id' (line N): ...") an open outline, fewer than 3
+// points, a curve or other unsupported path command, a transform, an outline with no material,
+// and a file with no scale. Self-intersections and bad nesting are validate()'s.
+CrossSection read_svg_cross_section(const std::filesystem::path& file, const SvgImportOptions& options);
+CrossSection parse_svg_cross_section(std::string_view text, const std::string& file, const SvgImportOptions& options);
 
 }  // namespace plumage

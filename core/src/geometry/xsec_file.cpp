@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/instance_files.hpp"
 #include "plumage/builtin_plugins.hpp"
 #include "plumage/cross_section_io.hpp"
 #include "plumage/input_file.hpp"
@@ -22,8 +23,6 @@
 namespace plumage {
 
 namespace {
-
-constexpr std::string_view kIndexField = "{index}";
 
 struct XsecFileParams {
   std::vector<std::string> files;  // one pattern with {index}, or the files of instances 0, 1, ...
@@ -35,60 +34,25 @@ const ParamTable<XsecFileParams>& xsec_file_params() {
       "the .xsec files (plumage-cross-section 1, as `plumage geometry` writes them), relative to the config's "
       "folder: a pattern in which {index} stands for the instance index n (\"rd/rockdove-forest-{index}.xsec\"), "
       "or a list whose n-th file is instance n",
-      [](const ParamView& p, XsecFileParams& o) {
-        if (!p.has("files")) p.fail("files", "required: the .xsec files of the instances");
-        const ParamView v = p.node("files");
-        if (v.is_sequence()) {
-          for (const ParamView& item : v.items()) o.files.push_back(item.scalar_text());
-          if (o.files.empty()) p.fail("files", "the list of .xsec files is empty");
-        } else {
-          o.files.push_back(v.scalar_text());
-        }
-        for (const std::string& f : o.files) {
-          if (f.empty()) p.fail("files", "an empty file name");
-        }
-      });
+      [](const ParamView& p, XsecFileParams& o) { o.files = read_file_names(p, "the .xsec files"); });
   return table;
 }
 
 class XsecFile final : public StructureGenerator {
  public:
-  XsecFile(const ParamView& p, const PluginContext& ctx) {
-    const XsecFileParams o = xsec_file_params().read(p);
-    for (const std::string& f : o.files) files_.push_back(ctx.config_dir / f);
-    // A name in a list stands for itself; a single name without {index} is every instance.
-    pattern_ = files_.size() == 1 && o.files.front().find(kIndexField) != std::string::npos;
+  XsecFile(const ParamView& p, const PluginContext& ctx) : files_(xsec_file_params().read(p).files, ctx.config_dir, "xsec_file") {
     // A misspelt folder or pattern is refused at the config's `files`, not at the first solve.
     try {
-      for (std::size_t n = 0; n < (pattern_ ? 1 : files_.size()); ++n) check_input_file(file_of(n), "cross section");
+      for (std::size_t n = 0; n < files_.checked_count(); ++n) check_input_file(files_.of(n), "cross section");
     } catch (const InputFileError& e) {
       p.fail("files", e.what());
     }
   }
 
-  CrossSection generate(std::uint64_t index) const override { return read_cross_section_text(file_of(index)); }
+  CrossSection generate(std::uint64_t index) const override { return read_cross_section_text(files_.of(index)); }
 
  private:
-  std::filesystem::path file_of(std::uint64_t index) const {
-    if (!pattern_) {
-      if (files_.size() == 1) return files_.front();
-      if (index >= files_.size()) {
-        throw Error("xsec_file: instance " + std::to_string(index) + " asked for, but `files` lists " +
-                    std::to_string(files_.size()) + " (ask for at most that many instances)");
-      }
-      return files_[index];
-    }
-    std::string name = files_.front().string();
-    for (std::size_t at = name.find(kIndexField); at != std::string::npos; at = name.find(kIndexField, at)) {
-      const std::string n = std::to_string(index);
-      name.replace(at, kIndexField.size(), n);
-      at += n.size();
-    }
-    return name;
-  }
-
-  std::vector<std::filesystem::path> files_;
-  bool pattern_ = false;
+  InstanceFiles files_;
 };
 
 }  // namespace
