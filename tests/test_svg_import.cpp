@@ -185,6 +185,9 @@ TEST_CASE("svg import: bad files are refused naming the element", "[svg-import]"
   SvgImportOptions no_scale = o;
   no_scale.um_per_unit.reset();
   check_refused(film_svg(kMelaninPath), no_scale, "no scale");
+  // Mis-scaled (a 10 m wide outline at 10 nm edges): refused before any vertex is made.
+  check_refused(film_svg("<rect id=\"huge\" fill=\"#000000\" x=\"0\" y=\"500\" width=\"1e10\" height=\"100\"/>"), o,
+                "would need over 1e7 vertices");
   // A self-intersecting outline is read, and reported by validate() as any section's.
   const CrossSection bow = parse_svg_cross_section(
       film_svg("<polygon id=\"film\" fill=\"#000000\" points=\"100,500 5900,590 5900,500 100,590\"/>"), "bow.svg", o);

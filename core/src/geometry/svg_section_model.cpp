@@ -70,6 +70,26 @@ Polyline refine(const Polyline& line, double max_nm, bool closed) {
   return out;
 }
 
+// The vertices refine() makes of every outline, checked before any is made: coordinates in the
+// thousands of µm at 10 nm edges would be millions of vertices per outline, and a damaged or
+// mis-scaled file must be refused, not allocated (docs/architecture.md, "Readers").
+inline constexpr double kMaxSvgRefinedVertices = 1e7;
+void check_refined_size(const std::vector<SvgOutline>& outlines, double nm_per_unit, double max_nm,
+                        const std::string& file) {
+  double total = 0.0;
+  for (const SvgOutline& s : outlines) {
+    for (std::size_t k = 0; k < s.points.size(); ++k) {
+      const Vec2 a = s.points[k], b = s.points[(k + 1) % s.points.size()];
+      const double edge = nm_per_unit * norm(b - a);
+      if (!std::isfinite(edge)) throw InputFileError(file, s.where + ": a coordinate is too large");
+      total += std::max(1.0, std::ceil(edge / max_nm));
+    }
+    if (total > kMaxSvgRefinedVertices)
+      throw InputFileError(file, s.where + ": the outlines would need over 1e7 vertices of at most " +
+                                     std::to_string(max_nm) + " nm (is the scale right? raise max_segment_nm)");
+  }
+}
+
 struct Chains {
   Polyline upper, lower;  // left → right
   bool monotone = true;   // x strictly increasing along both
@@ -175,6 +195,7 @@ CrossSection parse_svg_cross_section(std::string_view text, const std::string& f
   if (drawing.outlines.empty()) throw InputFileError(file, "no closed outline (<path>, <polygon> or <rect>)");
   if (!(options.max_segment_nm > 0.0)) throw InputFileError(file, "max_segment_nm must be positive");
   const double scale = nm_per_unit(drawing, options, file);
+  check_refined_size(drawing.outlines, scale, options.max_segment_nm, file);
   std::vector<Shape> shapes;
   for (const SvgOutline& s : drawing.outlines) {
     Polygon p;
