@@ -47,25 +47,19 @@ std::vector<IncidentAngles> parse_incidents(const std::string& text) {
     } catch (const std::exception&) {
       throw UsageError("--incident: '" + item + "' is not theta,phi in degrees (e.g. \"0,0 0,-45 45,0\")");
     }
-    if (!(std::abs(v.theta_deg) < 90.0 && std::abs(v.phi_deg) < 90.0)) {
-      throw UsageError("--incident: '" + item + "': theta and phi must lie in (-90, 90) degrees");
-    }
     out.push_back(v);
   }
-  if (out.empty()) throw UsageError("--incident: no directions given");
   return out;
 }
 
 void plot(const AppContext& context, const PlotOptions& o) {
   check_output_flag("--out", o.out, {o.file}, "material");
-  if (o.instances < 0 || o.instances > 16) throw UsageError("--instances must be in 0..16");
-  if (o.size < 16 || o.size > 2048) throw UsageError("--size must be in 16..2048");
-  if (o.exposure < 0.0) throw UsageError("--exposure must be > 0 (or 0 for automatic)");
   HemispherePlotOptions options;
   options.incidents = parse_incidents(o.incident);
   options.instances = o.instances;
   options.size = o.size;
   options.exposure = o.exposure;
+  check_hemisphere_plot_options(options);
   auto material = std::make_shared<const FeatherMaterial>(read_feather_material(o.file));
   const HemispherePanels panels = hemisphere_panels(material, options);
   write_hemisphere_figure(panels, options, *material, o.out);

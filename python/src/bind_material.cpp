@@ -23,24 +23,19 @@ MaterialPtr load_material(const std::filesystem::path& file) {
 
 namespace {
 
-// `plumage brdf plot --incident "θ,φ ..."` as a sequence of (theta_deg, phi_deg) pairs, with the
-// command's range check.
+// `plumage brdf plot --incident "θ,φ ..."` as a sequence of (theta_deg, phi_deg) pairs; the ranges
+// are the library's (check_hemisphere_plot_options, ConfigError at the command's flag).
 HemispherePlotOptions plot_options(const py::handle& incidents, int instances, int size, double exposure) {
   HemispherePlotOptions o;
   for (const py::handle item : incidents) {
     const auto pair = py::cast<std::vector<double>>(item);
     if (pair.size() != 2) throw py::value_error("incidents: each entry is (theta_deg, phi_deg)");
-    if (!(std::abs(pair[0]) < 90.0 && std::abs(pair[1]) < 90.0))
-      throw py::value_error("incidents: theta and phi must lie in (-90, 90) degrees");
     o.incidents.push_back({pair[0], pair[1]});
   }
-  if (o.incidents.empty()) throw py::value_error("incidents: no directions given");
-  if (instances < 0 || instances > 16) throw py::value_error("instances must be in 0..16");
-  if (size < 16 || size > 2048) throw py::value_error("size must be in 16..2048");
-  if (!(exposure >= 0.0)) throw py::value_error("exposure must be > 0 (or 0 for automatic)");
   o.instances = instances;
   o.size = size;
   o.exposure = exposure;
+  check_hemisphere_plot_options(o);
   return o;
 }
 

@@ -45,6 +45,10 @@ struct HemispherePanels {
 };
 
 // The panels of a reflection-only BSDF of `material` (transmission albedo 0).
+// The ranges `plumage brdf plot` and Material.hemisphere_panels accept: at least one incident
+// direction, θ and φ in (−90°, 90°), 0..16 instances, 16..2048 pixels, exposure ≥ 0. ConfigError
+// located at the command's flag (--incident, --instances, --size, --exposure).
+void check_hemisphere_plot_options(const HemispherePlotOptions& options);
 HemispherePanels hemisphere_panels(std::shared_ptr<const FeatherMaterial> material, const HemispherePlotOptions& options);
 
 // One figure (share/plumage/plot_hemisphere.py): a row per incident direction, the mean then the

@@ -10,6 +10,7 @@
 #include "plumage/brdf_report.hpp"
 #include "plumage/charts.hpp"
 #include "plumage/conventions.hpp"
+#include "plumage/error.hpp"
 #include "plumage/image.hpp"
 
 namespace plumage {
@@ -57,6 +58,19 @@ std::vector<Xyz> render_panel(const FeatherBsdf& bsdf, const SpectralToXyz& to_x
 }
 
 }  // namespace
+
+void check_hemisphere_plot_options(const HemispherePlotOptions& o) {
+  auto refuse = [](const char* flag, const std::string& message) { throw ConfigError(SourceMark{flag, 0, 0}, "", message); };
+  if (o.incidents.empty()) refuse("--incident", "no directions given");
+  for (const IncidentAngles& v : o.incidents) {
+    if (!(std::abs(v.theta_deg) < 90.0 && std::abs(v.phi_deg) < 90.0))
+      refuse("--incident", "theta and phi must lie in (-90, 90) degrees (" + std::to_string(v.theta_deg) + ", " +
+                               std::to_string(v.phi_deg) + " given)");
+  }
+  if (o.instances < 0 || o.instances > 16) refuse("--instances", "must be in 0..16");
+  if (o.size < 16 || o.size > 2048) refuse("--size", "must be in 16..2048");
+  if (!(o.exposure >= 0.0)) refuse("--exposure", "must be > 0 (or 0 for automatic)");
+}
 
 HemispherePanels hemisphere_panels(std::shared_ptr<const FeatherMaterial> material, const HemispherePlotOptions& o) {
   FeatherBsdfOptions options;
