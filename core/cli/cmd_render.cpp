@@ -30,21 +30,14 @@ struct Options {
 };
 
 RenderJobOptions job_options(const Options& o) {
-  if ((o.width > 0) != (o.height > 0)) throw UsageError("--width and --height go together");
-  RenderJobOptions j;
-  j.view = o.view;
-  j.width = o.width, j.height = o.height;
-  auto set = [&j](const std::string& key, const std::string& value) {
-    j.renderer_settings.push_back({key, value, "command line --" + key});
-  };
-  if (o.spp > 0) set("spp", std::to_string(o.spp));
-  if (o.seed) set("seed", std::to_string(*o.seed));
-  if (!o.lod.empty()) set("lod", o.lod);
-  if (o.threads > 0) {
-    set("threads", std::to_string(o.threads));
-    j.max_threads = static_cast<std::size_t>(o.threads);
-  }
-  return j;
+  RenderFlags f;
+  f.view = o.view;
+  f.width = o.width, f.height = o.height;
+  if (o.spp > 0) f.spp = o.spp;  // 0: the scene's
+  f.seed = o.seed;
+  f.lod = o.lod;
+  if (o.threads != 0) f.threads = o.threads;
+  return render_job_options(f, "command line --{key}");
 }
 
 // Feather materials: the library's material store (plumage/material_store.hpp) finds, validates

@@ -76,30 +76,18 @@ py::dict object_dict(const SceneConfig& c, const SceneObjectSpec& o) {
   return d;
 }
 
-// The command's flags as the job's options: renderer settings go through the renderer's own
-// parameter table, with a source naming the Python argument for its error messages.
+// The arguments as the job's options (render_job_options): the renderer's own table checks spp,
+// seed, lod and threads, naming plumage.render(<key>=...) as their source.
 RenderJobOptions job_options(const std::string& view, int width, int height, std::optional<int> spp,
                              std::optional<std::uint64_t> seed, const std::string& lod, int threads) {
-  if ((width > 0) != (height > 0)) throw py::value_error("width and height go together");
-  if (width < 0 || height < 0) throw py::value_error("width, height: expected > 0 (0: the scene's render.resolution)");
-  if (spp && *spp <= 0) throw py::value_error("spp: expected a positive number");
-  if (threads < 0) throw py::value_error("threads: expected >= 0 (0: all cores)");
-  if (!lod.empty() && lod != "auto" && lod != "mean" && lod != "instance")
-    throw py::value_error("lod: expected 'auto', 'mean' or 'instance', not '" + lod + "'");
-  RenderJobOptions j;
-  j.view = view;
-  j.width = width, j.height = height;
-  auto set = [&j](const std::string& key, const std::string& value) {
-    j.renderer_settings.push_back({key, value, "plumage.render(" + key + "=...)"});
-  };
-  if (spp) set("spp", std::to_string(*spp));
-  if (seed) set("seed", std::to_string(*seed));
-  if (!lod.empty()) set("lod", lod);
-  if (threads > 0) {
-    set("threads", std::to_string(threads));
-    j.max_threads = static_cast<std::size_t>(threads);
-  }
-  return j;
+  RenderFlags f;
+  f.view = view;
+  f.width = width, f.height = height;
+  if (spp) f.spp = *spp;
+  f.seed = seed;
+  f.lod = lod;
+  if (threads != 0) f.threads = threads;
+  return render_job_options(f, "plumage.render({key}=...)");
 }
 
 std::vector<std::string> lines_of(const std::string& text) {

@@ -13,9 +13,11 @@
 // parameter table exactly like a value in the file.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,6 +46,19 @@ struct RenderJobOptions {
 
 // The FeatherBsdf of a scene's `type: feather` material: looked up in a material store,
 // characterised, or read from the named .plm. Throwing stops the job.
+// `plumage render`'s flags (plumage.render's arguments) as job options. spp, seed, lod and
+// threads become keys of the renderer's section (its parameter table checks them), each with
+// the source `source` with "{key}" replaced by the key ("command line --{key}"); threads also
+// caps the job's oneTBB threads. width and height go together (ConfigError otherwise).
+struct RenderFlags {
+  std::string view;
+  int width = 0, height = 0;  // both 0: the scene's render.resolution
+  std::optional<long long> spp, threads;
+  std::optional<std::uint64_t> seed;
+  std::string lod;  // empty: the scene's
+};
+RenderJobOptions render_job_options(const RenderFlags& flags, const std::string& source);
+
 using FeatherResolver = std::function<std::shared_ptr<const FeatherBsdf>(const FeatherMaterialRequest&)>;
 
 struct RenderedView {

@@ -95,6 +95,28 @@ struct RenderJob::State {
   bool built = false, meshes_moved = false;
 };
 
+RenderJobOptions render_job_options(const RenderFlags& f, const std::string& source) {
+  auto source_of = [&source](const std::string& key) {
+    std::string out = source;
+    if (const auto at = out.find("{key}"); at != std::string::npos) out.replace(at, 5, key);
+    return out;
+  };
+  if ((f.width != 0) != (f.height != 0) || f.width < 0 || f.height < 0)
+    throw ConfigError(SourceMark{source_of("width"), 0, 0}, "", "width and height go together, both > 0 (or both 0: the scene's)");
+  RenderJobOptions j;
+  j.view = f.view;
+  j.width = f.width, j.height = f.height;
+  auto set = [&](const std::string& key, const std::string& value) { j.renderer_settings.push_back({key, value, source_of(key)}); };
+  if (f.spp) set("spp", std::to_string(*f.spp));
+  if (f.seed) set("seed", std::to_string(*f.seed));
+  if (!f.lod.empty()) set("lod", f.lod);
+  if (f.threads) {
+    set("threads", std::to_string(*f.threads));
+    if (*f.threads > 0) j.max_threads = static_cast<std::size_t>(*f.threads);
+  }
+  return j;
+}
+
 RenderJob::RenderJob(const fs::path& scene_file, RenderJobOptions options, const PluginRegistry& registry)
     : state_(std::make_unique<State>()) {
   State& s = *state_;
