@@ -86,7 +86,7 @@ std::string json_escape(const std::string& text) {
 void query(const QueryOptions& o) {
   const ReflectionTable t = load_input_table(o.file);
   const JonesReflection r = t.query(o.lambda_nm, deg_to_rad(o.theta_deg), deg_to_rad(o.phi_deg));
-  const double Rs = std::norm(r.ss) + std::norm(r.ps), Rp = std::norm(r.pp) + std::norm(r.sp);
+  const double Rs = reflectance_s(r), Rp = reflectance_p(r);
   auto c = [](Complex z) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "%.9g, %.9g", z.real(), z.imag());
@@ -125,8 +125,8 @@ void plot(const PlotOptions& o) {
         const double lam = L.size() == 1 ? lo : lo + (hi - lo) * k / (n - 1);
         const JonesReflection rp = t.query(lam, 0.0, deg_to_rad(a));  // in-plane (phi_local)
         const JonesReflection rt = t.query(lam, deg_to_rad(a), 0.0);  // conical (theta)
-        const double Rp = pol == 0 ? std::norm(rp.ss) + std::norm(rp.ps) : std::norm(rp.pp) + std::norm(rp.sp);
-        const double Rt = pol == 0 ? std::norm(rt.ss) + std::norm(rt.ps) : std::norm(rt.pp) + std::norm(rt.sp);
+        const double Rp = pol == 0 ? reflectance_s(rp) : reflectance_p(rp);
+        const double Rt = pol == 0 ? reflectance_s(rt) : reflectance_p(rt);
         char series[64];
         std::snprintf(series, sizeof series, "%g deg", a);
         chart.points.push_back({name + "-pol, theta = 0, angle = phi_local", series, lam, Rp});

@@ -175,11 +175,10 @@ of the specular order in the (s, p) basis. Made by plumage.read_table.)doc")
              const std::vector<JonesReflection> j = query_all(t, q);
              py::array_t<double> out({static_cast<py::ssize_t>(q.n), py::ssize_t{2}});
              auto o = out.mutable_unchecked<2>();
-             // The command's R_s and R_p: power reflected (both polarizations) of s- / p-incident light.
              for (std::size_t k = 0; k < q.n; ++k) {
                const auto i = static_cast<py::ssize_t>(k);
-               o(i, 0) = std::norm(j[k].ss) + std::norm(j[k].ps);
-               o(i, 1) = std::norm(j[k].pp) + std::norm(j[k].sp);
+               o(i, 0) = reflectance_s(j[k]);
+               o(i, 1) = reflectance_p(j[k]);
              }
              return out;
            },

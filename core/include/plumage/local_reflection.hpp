@@ -35,6 +35,11 @@ struct JonesReflection {
   Complex pp{0.0, 0.0};
 };
 
+// Power reflected, into both polarizations, of s- and of p-incident light: R_s = |r_ss|² + |r_ps|²,
+// R_p = |r_pp|² + |r_sp|² (what `plumage table query` and ReflectionTable.reflectance report).
+inline double reflectance_s(const JonesReflection& r) { return std::norm(r.ss) + std::norm(r.ps); }
+inline double reflectance_p(const JonesReflection& r) { return std::norm(r.pp) + std::norm(r.sp); }
+
 // How the explicit preparation step (issue 22: no hidden heavy work) may satisfy a model's
 // one-time needs, such as a photonic crystal's reflection table.
 struct PreparationOptions {
