@@ -95,10 +95,13 @@ TEST_CASE("validation shapes load like species and have the exact stacks", "[geo
 
   auto cyl = load_species_config(dir / "keratin-cylinder.yaml", builtin_registry());
   const CrossSection c = cyl.structure->generate(0);
-  CHECK(signed_area(c.regions[0].outline) == Approx(kPi * 250.0 * 250.0).epsilon(1e-3));
+  // Area-preserving polygon (issue 28): the circle's area exactly, so its vertices lie at
+  // r·sqrt(step/sin step), step = π/n for n segments per half.
+  CHECK(signed_area(c.regions[0].outline) == Approx(kPi * 250.0 * 250.0).epsilon(1e-12));
+  const double step = kPi / static_cast<double>(c.top.size() - 1);
   const auto mid = layer_profile_at(c, c.top.size() / 2);
   REQUIRE(mid.layers.size() == 1);
-  CHECK(mid.layers[0].thickness_nm == Approx(500.0).epsilon(1e-9));
+  CHECK(mid.layers[0].thickness_nm == Approx(500.0 * std::sqrt(step / std::sin(step))).epsilon(1e-9));
 
   auto coated = load_species_config(dir / "coated-cylinder.yaml", builtin_registry());
   const CrossSection cc = coated.structure->generate(0);

@@ -220,9 +220,12 @@ TEST_CASE("reduced regions: mixtures get the mean or piecewise-constant fraction
   CHECK(fmax > fmin);
 }
 
-TEST_CASE("hummingbird: reduced platelets and bubble layers coincide with the exact ones", "[reduced-regions]") {
-  // The platelet generator builds its exact platelets and bubble chains from the same
-  // boundaries as its layered model, so the two region sets must hold the same areas.
+TEST_CASE("hummingbird: reduced platelets coincide with the exact ones, reduced bubble chains hold the bubbles",
+          "[reduced-regions]") {
+  // The platelet generator builds its exact platelets from the same boundaries as its layered
+  // model, so their melanin boxes hold the same area. Its exact bubbles are separate ellipses
+  // (issue 28); the layered model joins them into chains, cut at ±π/12 and bridged, so the chains
+  // hold the bubbles' air plus the necks: more, but only by the necks (7.4 % for instance 1).
   const auto cfg = testing::species("hummingbird");
   const CrossSection cs = cfg.structure->generate(1);
   const auto reduced = reduced_regions(cs);
@@ -234,8 +237,10 @@ TEST_CASE("hummingbird: reduced platelets and bubble layers coincide with the ex
     return a;
   };
   CHECK(area_of(reduced, Material::Kind::melanin) == Approx(area_of(cs.regions, Material::Kind::melanin)).epsilon(1e-12));
-  CHECK(area_of(reduced, Material::Kind::air) == Approx(area_of(cs.regions, Material::Kind::air)).epsilon(1e-12));
-  CHECK(area_of(reduced, Material::Kind::air) > 0.0);
+  const double exact_air = area_of(cs.regions, Material::Kind::air), chain_air = area_of(reduced, Material::Kind::air);
+  CHECK(exact_air > 0.0);
+  CHECK(chain_air > exact_air);
+  CHECK(chain_air < 1.15 * exact_air);
 }
 
 TEST_CASE("reduced regions need a layered model", "[reduced-regions]") {

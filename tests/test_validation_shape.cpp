@@ -3,6 +3,7 @@
 // parameters of another shape and inconsistent values, naming the parameter.
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <string>
 
 #include "plumage/config_document.hpp"
@@ -28,7 +29,42 @@ std::string error_of(const std::string& yaml) {
   return "no error";
 }
 
+// Shoelace area of a closed outline (either orientation).
+double polygon_area(const Polygon& p) {
+  double a = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec2& u = p[i];
+    const Vec2& v = p[(i + 1) % p.size()];
+    a += u.x * v.z - v.x * u.z;
+  }
+  return 0.5 * std::abs(a);
+}
+
 }  // namespace
+
+// Issue 28: the validation circles have the circle's area by default (the exact series is for the
+// circle, and an inscribed polygon is smaller by ≈ (2π/N)²/6); `polygon: inscribed` keeps the
+// vertices on the circle.
+TEST_CASE("validation_shape: circles are area-preserving polygons unless inscribed is asked", "[validation-shape]") {
+  const double pi = std::acos(-1.0);
+  for (const double r : {100.0, 250.0, 1000.0}) {
+    const std::string base = "{shape: circle, radius_nm: " + std::to_string(r) + ", spacing_nm: 20";
+    const CrossSection exact = generate(base + "}");
+    const CrossSection inscribed = generate(base + ", polygon: inscribed}");
+    const double disc = pi * r * r;
+    CHECK(polygon_area(exact.regions[0].outline) == Approx(disc).epsilon(1e-12));
+    const double n_total = 2.0 * static_cast<double>(inscribed.top.size() - 1);
+    CHECK(polygon_area(inscribed.regions[0].outline) ==
+          Approx(0.5 * n_total * r * r * std::sin(2.0 * pi / n_total)).epsilon(1e-12));
+    for (const Vec2& v : inscribed.top) CHECK(std::hypot(v.x, v.z) == Approx(r).epsilon(1e-12));
+    CHECK(polygon_area(inscribed.regions[0].outline) < disc * (1.0 - 1e-5));
+  }
+  const CrossSection coated = generate("{shape: coated_circle, radius_nm: 350, coating_nm: 100, spacing_nm: 10}");
+  CHECK(polygon_area(coated.regions[1].outline) == Approx(pi * 250.0 * 250.0).epsilon(1e-12));
+  CHECK_THAT(error_of("{shape: slab, width_um: 1, polygon: inscribed, stack: {layers: [{material: keratin, "
+                      "thickness_nm: 300}]}}"),
+             Catch::Contains("polygon"));
+}
 
 TEST_CASE("validation_shape: each shape reads its parameters, spacing defaults per shape", "[validation-shape]") {
   // half circle of radius 250 nm at 5 nm: ceil(pi 250 / 5) = 158 segments

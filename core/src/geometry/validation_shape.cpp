@@ -27,16 +27,26 @@ namespace plumage {
 
 namespace {
 
-// Half circle from angle π to 0 (upper, x increasing) or π to 2π (lower, x increasing).
-Polyline half_circle(double r, bool upper, double spacing) {
+// How a circle becomes a polygon. Vertices on the circle make the body too small by the
+// polygon's area defect 1 − sin(2π/N)/(2π/N) ≈ (2π/N)²/6 (issue 28: the 100 nm melanin cylinder
+// was 4e-4–9.5e-4 off the exact series for that alone); the area-preserving polygon puts its
+// vertices at r·sqrt((2π/N)/sin(2π/N)), so the body has the circle's area (and, to O(N⁻²), its
+// scattering).
+enum class CirclePolygon { area_preserving, inscribed };
+
+// Half circle from angle π to 0 (upper, x increasing) or π to 2π (lower, x increasing); the two
+// halves of one radius make a regular polygon of 2n vertices.
+Polyline half_circle(double r, bool upper, double spacing, CirclePolygon polygon) {
   const int n = std::max(16, static_cast<int>(std::ceil(kPi * r / spacing)));
+  const double step = kPi / n;  // = 2π/N with N = 2n vertices in all
+  const double rv = polygon == CirclePolygon::area_preserving ? r * std::sqrt(step / std::sin(step)) : r;
   Polyline p;
   for (int k = 0; k <= n; ++k) {
     const double t = kPi - kPi * k / n;
-    p.push_back({r * std::cos(t), (upper ? 1.0 : -1.0) * r * std::sin(t)});
+    p.push_back({rv * std::cos(t), (upper ? 1.0 : -1.0) * rv * std::sin(t)});
   }
-  p.front() = {-r, 0.0};
-  p.back() = {r, 0.0};
+  p.front() = {-rv, 0.0};
+  p.back() = {rv, 0.0};
   return p;
 }
 
@@ -61,6 +71,7 @@ struct ShapeParams {
   double width_um;
   LayerProfile stack;
   std::optional<double> spacing_nm;
+  CirclePolygon polygon;
   std::optional<double> radius_um;  // slab: curved top
   Roughness roughness;
 };
@@ -117,6 +128,13 @@ const ParamTable<ShapeParams>& shape_params() {
                       format_param_number(kCircleSpacingNm) + " (circles), " + format_param_number(kSlabSpacingNm) +
                           " (slab)",
                       Limits::positive(), "vertex spacing on curves");
+    t.choice("polygon", &ShapeParams::polygon,
+             std::vector<std::pair<std::string_view, CirclePolygon>>{
+                 {"area_preserving", CirclePolygon::area_preserving}, {"inscribed", CirclePolygon::inscribed}},
+             CirclePolygon::area_preserving,
+             "circle as a regular polygon with the circle's area (vertices slightly outside it) or with its "
+             "vertices on the circle (a body too small by about (2π/N)²/6 of its area, N vertices)")
+        .only_if(is({Shape::circle, Shape::coated_circle}), "shape: circle | coated_circle");
     t.optional_number("radius_um", &ShapeParams::radius_um, "um", "flat", Limits::positive(),
                       "curved top: a circular arc of this radius (apex at z = 0); interfaces are concentric arcs "
                       "(radius > width/2 + stack depth)")
@@ -144,6 +162,7 @@ class ValidationShape final : public StructureGenerator {
         core_ = o.core;
       }
       spacing_ = o.spacing_nm.value_or(kCircleSpacingNm);
+      polygon_ = o.polygon;
     } else {
       width_nm_ = 1000.0 * o.width_um;
       stack_ = o.stack;
@@ -170,13 +189,13 @@ class ValidationShape final : public StructureGenerator {
     CrossSection cs = start("validation_shape", index);
     LayeredModel model;
     if (shape_ != Shape::slab) {
-      cs.top = half_circle(radius_, true, spacing_);
-      cs.bottom = half_circle(radius_, false, spacing_);
+      cs.top = half_circle(radius_, true, spacing_, polygon_);
+      cs.bottom = half_circle(radius_, false, spacing_, polygon_);
       cs.regions.push_back({band_polygon(cs.top, cs.bottom), material_, RegionRole::body});
       model.below_top = material_;
       if (shape_ == Shape::coated_circle) {
         const double ri = radius_ - coating_nm_;
-        Polyline up = half_circle(ri, true, spacing_), down = half_circle(ri, false, spacing_);
+        Polyline up = half_circle(ri, true, spacing_, polygon_), down = half_circle(ri, false, spacing_, polygon_);
         cs.regions.push_back({band_polygon(up, down), core_, RegionRole::core, 0});
         model.boundaries.push_back({up, core_, {}, 1});
         model.boundaries.push_back({down, material_, {}, -1});
@@ -235,6 +254,7 @@ class ValidationShape final : public StructureGenerator {
  private:
   Shape shape_ = Shape::circle;
   double radius_ = 0, coating_nm_ = 0, width_nm_ = 0, spacing_ = 5;
+  CirclePolygon polygon_ = CirclePolygon::area_preserving;
   double radius_nm_ = 0;  // slab: curved top (0: flat)
   double rms_nm_ = 0, correlation_nm_ = 1000;  // slab: roughness (rms 0: none)
   std::uint64_t seed_ = 1;

@@ -1,5 +1,9 @@
 // layered_barbule, model platelets (type 4 of spec geometry-and-brdf §1.3): layers of hollow
 // melanin platelets, each a rounded box with a row of air bubbles along its midline.
+// Two models of the bubbles (paper §4.2, Fig. 4(b) and the three-way test of Fig. 8): the exact
+// geometry (the regions, for the full-wave BEM) has each bubble as its own ellipse, separated from
+// its neighbours by a melanin membrane; the reduced layered model joins the bubbles of a platelet
+// into one chain (neighbouring ellipses cut at ±π/12 and joined), a connected air layer.
 // Random draws: "platelets.layers" (air cores and spacers), "platelets.platelets" (lengths and
 // gaps per layer), "platelets.bubbles" (bubble lengths and heights per platelet), in that order.
 // Bit-identical geometry on every machine: no fused multiply-add contraction (-march=native
@@ -105,9 +109,11 @@ Band platelet_box(const Polyline& up, const Polyline& down, const Polyline& mid,
 }
 
 // The row of air bubbles inside a platelet [xa, xb] with air core `a`: ellipses along the
-// midline, cut where neighbours meet (π/12 from the axis), as one band; and their count.
+// midline, as one band cut where neighbours meet (π/12 from the axis: the layered model) and each
+// whole (the exact regions); and their count.
 struct Bubbles {
   Band band;
+  std::vector<Polygon> each;
   int count = 0;
 };
 
@@ -150,6 +156,13 @@ Bubbles platelet_bubbles(const LayeredParams& p, const Polyline& mid, double xa,
     };
     ellipse_arc(bu, 1.0);
     ellipse_arc(bd, -1.0);
+    // The whole ellipse, counter-clockwise (t ≈ +x, nn ≈ +z), at the arcs' vertex spacing.
+    const int kw = std::max(8, static_cast<int>(std::ceil(kPi * std::max(l, height) / p.arc_step_nm)));
+    Polygon& e = out.each.emplace_back();
+    for (int q = 0; q < kw; ++q) {
+      const double ang = 2.0 * kPi * q / kw;
+      e.push_back(c + (0.5 * l * std::cos(ang)) * t + (0.5 * height * std::sin(ang)) * nn);
+    }
     bx += l + p.membrane_nm;
   }
   bd.front() = bu.front();
@@ -199,8 +212,9 @@ void LayeredBarbule::build_platelets(CrossSection& cs) const {
       m.boundaries.push_back({box.lower, p_.body, {}, -1});
       const int plate_index = static_cast<int>(cs.regions.size());
       cs.regions.push_back({band_polygon(box.upper, box.lower), melanin, RegionRole::platelet, 0, layer, 1, xb - xa});
-      cs.regions.push_back({band_polygon(bubbles.band.upper, bubbles.band.lower), air_m, RegionRole::air_bubble,
-                            plate_index, layer, bubbles.count, a});
+      for (Polygon& bubble : bubbles.each) {
+        cs.regions.push_back({std::move(bubble), air_m, RegionRole::air_bubble, plate_index, layer, 1, a});
+      }
     }
     h1 = h2 + (layer + 1 < n ? stack.spacer[static_cast<std::size_t>(layer)] : 0.0);
   }

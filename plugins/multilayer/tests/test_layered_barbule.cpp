@@ -153,7 +153,7 @@ TEST_CASE("hummingbird: platelet and bubble counts", "[layered_barbule][statisti
   Moments platelets_per_instance, bubbles_l1, bubbles_l3, thickness;
   for (int k = 0; k < 200; ++k) {
     const CrossSection cs = cfg.structure->generate(static_cast<std::uint64_t>(k));
-    std::map<int, int> per_layer;
+    std::map<int, int> per_layer, bubbles_in;  // bubbles per platelet region
     int platelets = 0;
     for (std::size_t r = 0; r < cs.regions.size(); ++r) {
       const Region& g = cs.regions[r];
@@ -162,19 +162,26 @@ TEST_CASE("hummingbird: platelet and bubble counts", "[layered_barbule][statisti
         ++per_layer[g.layer];
       }
       if (g.role == RegionRole::air_bubble) {
-        const Region& box = cs.regions[static_cast<std::size_t>(g.parent)];
-        REQUIRE(box.role == RegionRole::platelet);
-        // n = round((L − 2 t_w + t_m)/(air + t_m)) with t_w = 30, t_m = 20 nm.
-        REQUIRE(g.members == std::lround((box.size_nm - 60.0 + 20.0) / (g.size_nm + 20.0)));
-        if (g.layer == 0) {
-          REQUIRE(g.size_nm == 30.0);
-          bubbles_l1.add(g.members);
-        }
-        if (g.layer >= 2) {
-          REQUIRE(g.size_nm >= 95.0);
-          REQUIRE(g.size_nm <= 105.0);
-          bubbles_l3.add(g.members);
-        }
+        // The exact model (issue 28): one region per bubble, inside its platelet.
+        REQUIRE(g.members == 1);
+        REQUIRE(cs.regions[static_cast<std::size_t>(g.parent)].role == RegionRole::platelet);
+        ++bubbles_in[g.parent];
+      }
+    }
+    for (const auto& [plate, count] : bubbles_in) {
+      const Region& box = cs.regions[static_cast<std::size_t>(plate)];
+      const Region& bubble = cs.regions[static_cast<std::size_t>(plate) + 1];
+      REQUIRE(bubble.parent == plate);
+      // n = round((L − 2 t_w + t_m)/(air + t_m)) with t_w = 30, t_m = 20 nm.
+      REQUIRE(count == std::lround((box.size_nm - 60.0 + 20.0) / (bubble.size_nm + 20.0)));
+      if (box.layer == 0) {
+        REQUIRE(bubble.size_nm == 30.0);
+        bubbles_l1.add(count);
+      }
+      if (box.layer >= 2) {
+        REQUIRE(bubble.size_nm >= 95.0);
+        REQUIRE(bubble.size_nm <= 105.0);
+        bubbles_l3.add(count);
       }
     }
     // 38 µm between the corners: 85 % / 90 % covered by platelets of mean length 2 µm.
