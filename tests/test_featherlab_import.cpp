@@ -1,0 +1,291 @@
+// Cross sections from FeatherLab's per-instance text files (issue 25 (b)): a flat four-layer
+// barbule written by hand in that format gives, at every top vertex, the layer stack it was
+// written with (thicknesses from the curves' heights, the melanin fraction of the file); a
+// procedural rock dove instance (layered_barbule granule_gap) written in that format gives its
+// own layer profile back at every node; the featherlab_files generator reads file n + 1 for
+// instance n; damaged files are refused with InputFileError naming the file, the line and the
+// field.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "plumage/featherlab_section.hpp"
+#include "plumage/input_file.hpp"
+#include "plumage/species_config.hpp"
+#include "plumage/structure_generator.hpp"
+#include "test_registry.hpp"
+
+using namespace plumage;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "plumage-test-featherlab-import" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void write_text(const fs::path& file, const std::string& text) { std::ofstream(file, std::ios::binary) << text; }
+
+// Curves (nm) in FeatherLab's layout: xyvals "x,y" in µm, info "start,count".
+FeatherLabTexts featherlab_texts(const std::vector<Polyline>& curves, const std::vector<double>& ratio) {
+  FeatherLabTexts t;
+  std::ostringstream xy, info, mr;
+  xy << std::setprecision(17);
+  mr << std::setprecision(17);
+  std::size_t start = 0;
+  for (const Polyline& c : curves) {
+    info << start << ',' << c.size() << '\n';
+    for (const Vec2& v : c) xy << v.x / 1000.0 << ',' << v.z / 1000.0 << '\n';
+    start += c.size();
+  }
+  for (double f : ratio) mr << f << '\n';
+  t.xyvals = xy.str();
+  t.info = info.str();
+  t.melanin_ratio = mr.str();
+  t.xyvals_name = "xyvals1.txt";
+  t.info_name = "info1.txt";
+  t.melanin_ratio_name = "melaninRatio1.txt";
+  return t;
+}
+
+void write_instance(const fs::path& dir, int number, const FeatherLabTexts& t) {
+  const FeatherLabFiles f = featherlab_files_of(dir, static_cast<std::uint64_t>(number));
+  write_text(f.xyvals, t.xyvals);
+  write_text(f.info, t.info);
+  write_text(f.melanin_ratio, t.melanin_ratio);
+}
+
+// The rock dove's stack (configs/species/rockdove.yaml, variant forest): cortex 595 nm, air gap
+// 500 nm, granules of melanin in air 2310 nm, lower cortex 595 nm.
+const std::vector<double> kFlatThicknessNm = {595.0, 500.0, 2310.0, 595.0};
+constexpr int kFlatVertices = 41;  // 10 µm at 250 nm spacing
+
+Material granules(double f) { return Material::mixture(Material::air(), Material::melanin(), f); }
+
+FeatherLabImportOptions rockdove_options() {
+  FeatherLabImportOptions o;
+  o.layers = {Material::keratin(), Material::air(), granules(0.9), Material::keratin()};
+  o.melanin_ratio_layer = 2;  // the third layer (the config's melanin_ratio_layer: 3)
+  return o;
+}
+
+// A flat barbule 10 µm wide: the top at y = 0 and one curve under each layer; the melanin ratio
+// rising from 0.8 to 1.0 along the interior vertices.
+FeatherLabTexts flat_texts() {
+  std::vector<Polyline> curves(5);
+  double depth = 0.0;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    for (int k = 0; k < kFlatVertices; ++k) curves[c].push_back({-5000.0 + 250.0 * k, -depth});
+    if (c < kFlatThicknessNm.size()) depth += kFlatThicknessNm[c];
+  }
+  std::vector<double> ratio;
+  for (int k = 1; k + 1 < kFlatVertices; ++k) ratio.push_back(0.8 + 0.2 * (k - 1) / (kFlatVertices - 3));
+  return featherlab_texts(curves, ratio);
+}
+
+double expected_flat_fraction(int node) {
+  const int k = std::min(std::max(node, 1), kFlatVertices - 2);  // the ends take their neighbour's value
+  return 0.8 + 0.2 * (k - 1) / (kFlatVertices - 3);
+}
+
+}  // namespace
+
+TEST_CASE("featherlab import: a flat four-layer barbule gives its stack at every node", "[featherlab-import]") {
+  const CrossSection cs = parse_featherlab_instance(flat_texts(), rockdove_options());
+  CHECK(validate(cs).empty());
+  REQUIRE(cs.top.size() == kFlatVertices);
+  REQUIRE(cs.layered);
+  CHECK(cs.layered->boundaries.size() == 4);
+  // Regions: the keratin body, the air gap and the granular layer (the keratin layers are the body's).
+  REQUIRE(cs.regions.size() == 3);
+  CHECK(cs.regions[1].role == RegionRole::air_gap);
+  CHECK(cs.regions[2].role == RegionRole::granular_layer);
+  CHECK(cs.regions[2].material.fraction() == Approx(0.9).epsilon(1e-3));  // the mean of 0.8 .. 1.0 and two ends
+  for (int node = 0; node < kFlatVertices; ++node) {
+    INFO("node " << node);
+    const LayerProfile p = layer_profile_at(cs, static_cast<std::size_t>(node));
+    REQUIRE(p.layers.size() == 4);
+    for (std::size_t k = 0; k < 4; ++k) CHECK(p.layers[k].thickness_nm == Approx(kFlatThicknessNm[k]).epsilon(1e-12));
+    CHECK(p.layers[0].material.kind() == Material::Kind::keratin);
+    CHECK(p.layers[1].material.kind() == Material::Kind::air);
+    REQUIRE(p.layers[2].material.kind() == Material::Kind::mixture);
+    CHECK(p.layers[2].material.host().kind() == Material::Kind::air);
+    CHECK(p.layers[2].material.guest().kind() == Material::Kind::melanin);
+    CHECK(p.layers[2].material.fraction() == Approx(expected_flat_fraction(node)).epsilon(1e-12));
+    CHECK(p.layers[3].material.kind() == Material::Kind::keratin);
+    CHECK(p.substrate.kind() == Material::Kind::air);
+  }
+}
+
+TEST_CASE("featherlab import: a procedural rock dove written as FeatherLab files gives its layer profile back",
+          "[featherlab-import]") {
+  const SpeciesConfig species = testing::species("rockdove");
+  const CrossSection procedural = species.structure->generate(0);
+  REQUIRE(procedural.layered);
+  const LayeredModel& m = *procedural.layered;
+  REQUIRE(m.boundaries.size() == 4);  // cortex | air gap | granules | lower cortex
+  const LayerBoundary& granule_top = m.boundaries[1];
+  // FeatherLab's melanin ratio is one value per top vertex: the granules' upper boundary is an
+  // offset of the top, vertex by vertex.
+  REQUIRE(granule_top.points.size() == procedural.top.size());
+  std::vector<Polyline> curves = {procedural.top};
+  for (const LayerBoundary& b : m.boundaries) curves.push_back(b.points);
+  const std::vector<double> ratio(granule_top.fraction.begin() + 1, granule_top.fraction.end() - 1);
+  FeatherLabImportOptions o;
+  o.layers = {m.below_top, m.boundaries[0].below, m.boundaries[1].below, m.boundaries[2].below};
+  o.melanin_ratio_layer = 2;
+  const CrossSection imported = parse_featherlab_instance(featherlab_texts(curves, ratio), o);
+  CHECK(validate(imported).empty());
+  REQUIRE(imported.top.size() == procedural.top.size());
+  const std::size_t n = procedural.top.size();
+  const std::vector<LayerProfile> a = layer_profiles(procedural), b = layer_profiles(imported);
+  for (std::size_t node = 0; node < n; ++node) {
+    INFO("node " << node << " of " << n);
+    REQUIRE(a[node].layers.size() == b[node].layers.size());
+    for (std::size_t k = 0; k < a[node].layers.size(); ++k) {
+      const Layer &la = a[node].layers[k], &lb = b[node].layers[k];
+      CHECK(std::abs(la.thickness_nm - lb.thickness_nm) <= 1e-9 * (1.0 + la.thickness_nm));
+      CHECK(la.material.kind() == lb.material.kind());
+      // FeatherLab has no melanin ratio at the two end vertices; elsewhere the fractions agree.
+      if (la.material.kind() == Material::Kind::mixture && node >= 2 && node + 2 < n) {
+        CHECK(la.material.fraction() == Approx(lb.material.fraction()).epsilon(1e-12));
+      }
+    }
+  }
+}
+
+TEST_CASE("featherlab import: featherlab_files reads file n + 1 for instance n", "[featherlab-import]") {
+  const fs::path dir = scratch("generator");
+  fs::create_directories(dir / "geometry");
+  write_instance(dir / "geometry", 1, flat_texts());
+  const std::string head = "species: featherlab-flat\nreflection: {model: multilayer}\nstructure:\n"
+                           "  generator: featherlab_files\n  instances: geometry\n";
+  const std::string layers = "  layers: [keratin, air, {mix: [air, melanin], fraction: 0.9}, keratin]\n";
+  write_text(dir / "flat.yaml", head + layers + "  melanin_ratio_layer: 3\n");
+  const SpeciesConfig s = load_species_config(dir / "flat.yaml", testing::registry());
+  const CrossSection cs = s.structure->generate(0);
+  CHECK(cs.generator == "featherlab_files");
+  CHECK(cs.top.size() == kFlatVertices);
+  CHECK(layer_profile_at(cs, 20).layers[2].thickness_nm == Approx(2310.0).epsilon(1e-12));
+  // Instance 1 would be file 2, which is not there.
+  CHECK_THROWS_AS(s.structure->generate(1), InputFileError);
+
+  auto refused = [&](const std::string& yaml, const std::string& expected) {
+    write_text(dir / "bad.yaml", yaml);
+    try {
+      (void)load_species_config(dir / "bad.yaml", testing::registry());
+      FAIL("no error for " << expected);
+    } catch (const ConfigError& e) {
+      CHECK_THAT(e.what(), Catch::Contains(expected));
+    }
+  };
+  refused(head + "  layers: [keratin, air, melanin, keratin]\n  melanin_ratio_layer: 3\n", "melanin_ratio_layer");
+  refused(head + layers + "  melanin_ratio_layer: 7\n", "melanin_ratio_layer");
+  refused("species: x\nreflection: {model: multilayer}\nstructure:\n  generator: featherlab_files\n"
+          "  instances: nowhere\n" + layers, "instances");
+}
+
+namespace {
+
+void check_refused(FeatherLabTexts t, const std::string& file, const std::string& expected,
+                   const FeatherLabImportOptions& o = rockdove_options()) {
+  try {
+    (void)parse_featherlab_instance(t, o);
+    FAIL("no error for " << expected);
+  } catch (const InputFileError& e) {
+    CHECK(e.file() == file);
+    CHECK_THAT(e.what(), Catch::Contains(expected));
+  }
+}
+
+std::string replace_line(const std::string& text, int line, const std::string& with) {
+  std::istringstream in(text);
+  std::string out, l;
+  for (int k = 1; std::getline(in, l); ++k) out += (k == line ? with : l) + "\n";
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("featherlab import: bad files are refused naming the file, the line and the field", "[featherlab-import]") {
+  const FeatherLabTexts good = flat_texts();
+  FeatherLabTexts t = good;
+  t.xyvals = replace_line(good.xyvals, 3, "-4.5,nan");
+  check_refused(t, "xyvals1.txt", "xyvals1.txt: line 3: y: nan is not a finite number");
+  t.xyvals = replace_line(good.xyvals, 4, "-4.25,1e999");
+  check_refused(t, "xyvals1.txt", "line 4: y: 1e999 is not a finite number");
+  t.xyvals = replace_line(good.xyvals, 5, "-4,0,7");
+  check_refused(t, "xyvals1.txt", "line 5: 3 fields, expected 2 (x,y)");
+  t.xyvals = replace_line(good.xyvals, 6, "abc,0");
+  check_refused(t, "xyvals1.txt", "line 6: x: 'abc' is not a number");
+  // x going backwards within the top.
+  t.xyvals = replace_line(good.xyvals, 10, "-6,0");
+  check_refused(t, "xyvals1.txt", "line 10: x: curve 1 does not run left to right");
+
+  t = good;
+  t.info = replace_line(good.info, 5, "164,40");  // one vertex short of the rows
+  check_refused(t, "info1.txt", "line 5: the curves cover 204 rows of xyvals1.txt, which has 205");
+  t.info = replace_line(good.info, 2, "42,41");  // a gap after curve 1
+  check_refused(t, "info1.txt", "line 2: start: 42, but curve 2 must start at row 41");
+  t.info = replace_line(good.info, 5, "164,42");  // past the last row
+  check_refused(t, "info1.txt", "line 5: count: curve 5 ends at row 206");
+  t.info = replace_line(good.info, 1, "0,4.5");
+  check_refused(t, "info1.txt", "line 1: count: '4.5' is not a whole number");
+  t.info = "0,205\n";
+  check_refused(t, "info1.txt", "1 curve");
+
+  // A closed curve (a melanosome outline): the non-layered types are not read.
+  t = good;
+  t.xyvals = replace_line(good.xyvals, 82, "-5,-0.595");
+  check_refused(t, "xyvals1.txt", "line 82: curve 2 is closed");
+
+  // The wrong number of melanin ratios for the top's 41 vertices.
+  t = good;
+  t.melanin_ratio = replace_line(good.melanin_ratio, 39, "");
+  check_refused(t, "melaninRatio1.txt", "38 values, but the top surface has 41 vertices");
+  t.melanin_ratio = replace_line(good.melanin_ratio, 7, "1.5");
+  check_refused(t, "melaninRatio1.txt", "line 7: melanin ratio: 1.500000 is outside [0, 1]");
+
+  // Layers in the config that do not match the curves.
+  FeatherLabImportOptions three = rockdove_options();
+  three.layers.pop_back();
+  check_refused(good, "info1.txt", "5 curves, so 4 layers between them, but `layers` gives 3 materials", three);
+
+  // The air gap's upper curve bulging through the top surface: crossing curves, as validate() says.
+  t = good;
+  t.xyvals = replace_line(good.xyvals, 41 + 21, "0,0.2");
+  check_refused(t, "xyvals1.txt", "the curves do not make a valid cross section");
+}
+
+// The fuzz harness's seeds (fuzz/corpus/featherlab: the three files, each ended by a line "%%")
+// are valid instances, so that fuzzing starts from sections that reach every check.
+TEST_CASE("featherlab import: the fuzz seeds are valid instances", "[featherlab-import]") {
+  const fs::path corpus = fs::path(PLUMAGE_SOURCE_DIR) / "fuzz" / "corpus" / "featherlab";
+  int seeds = 0;
+  for (const auto& entry : fs::directory_iterator(corpus)) {
+    INFO(entry.path());
+    const std::string text = read_input_file(entry.path(), "fuzz seed");
+    const std::size_t a = text.find("\n%%\n"), b = text.find("\n%%\n", a + 4);
+    REQUIRE(b != std::string::npos);
+    FeatherLabTexts t;
+    t.xyvals = text.substr(0, a + 1);
+    t.info = text.substr(a + 4, b + 1 - (a + 4));
+    t.melanin_ratio = text.substr(b + 4);
+    t.xyvals_name = "xyvals1.txt";
+    t.info_name = "info1.txt";
+    t.melanin_ratio_name = "melaninRatio1.txt";
+    const CrossSection cs = parse_featherlab_instance(t, rockdove_options());
+    CHECK(cs.layered->boundaries.size() == 4);
+    seeds += 1;
+  }
+  CHECK(seeds == 2);
+}
