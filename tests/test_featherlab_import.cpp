@@ -179,6 +179,18 @@ TEST_CASE("featherlab import: featherlab_files reads file n + 1 for instance n",
   // Instance 1 would be file 2, which is not there.
   CHECK_THROWS_AS(s.structure->generate(1), InputFileError);
 
+  // A folder per instance: {index} in `instances`, the file number n + first_number in each.
+  for (int n : {0, 3}) {
+    fs::create_directories(dir / ("inst-" + std::to_string(n)));
+    write_instance(dir / ("inst-" + std::to_string(n)), n, flat_texts());
+  }
+  write_text(dir / "per-folder.yaml", "species: featherlab-flat\nreflection: {model: multilayer}\nstructure:\n"
+                                      "  generator: featherlab_files\n  instances: \"inst-{index}\"\n  first_number: 0\n" +
+                                          layers);
+  const SpeciesConfig per_folder = load_species_config(dir / "per-folder.yaml", testing::registry());
+  CHECK(per_folder.structure->generate(3).instance == 3);
+  CHECK_THROWS_AS(per_folder.structure->generate(1), InputFileError);  // no inst-1
+
   auto refused = [&](const std::string& yaml, const std::string& expected) {
     write_text(dir / "bad.yaml", yaml);
     try {

@@ -139,15 +139,18 @@ CrossSection parse_featherlab_instance(const FeatherLabTexts& t, const FeatherLa
   return cs;
 }
 
+// The largest file read (1 GiB): 2^24 rows of "x,y" at full double precision are about 700 MB.
+constexpr std::uintmax_t kMaxFeatherLabFileBytes = std::uintmax_t{1} << 30;
+
 CrossSection read_featherlab_instance(const FeatherLabFiles& files, const FeatherLabImportOptions& o) {
   FeatherLabTexts t;
   t.xyvals_name = files.xyvals.string();
   t.info_name = files.info.string();
-  t.xyvals = read_input_file(files.xyvals, "FeatherLab xyvals");
-  t.info = read_input_file(files.info, "FeatherLab info");
+  t.xyvals = read_input_file(files.xyvals, "FeatherLab xyvals", kMaxFeatherLabFileBytes);
+  t.info = read_input_file(files.info, "FeatherLab info", kMaxFeatherLabFileBytes);
   if (o.melanin_ratio_layer) {
     t.melanin_ratio_name = files.melanin_ratio.string();
-    t.melanin_ratio = read_input_file(files.melanin_ratio, "FeatherLab melanin ratio");
+    t.melanin_ratio = read_input_file(files.melanin_ratio, "FeatherLab melanin ratio", kMaxFeatherLabFileBytes);
   }
   return parse_featherlab_instance(t, o);
 }
