@@ -1,6 +1,7 @@
 // Cross sections from FeatherLab's per-instance text files (issue 25 (b)): a flat four-layer
 // barbule written by hand in that format gives, at every top vertex, the layer stack it was
-// written with (thicknesses from the curves' heights, the melanin fraction of the file); a
+// written with (thicknesses from the curves' heights, the melanin fraction of the file) and the
+// far field of the same stack built by validation_shape `slab`; a
 // procedural rock dove instance (layered_barbule granule_gap) written in that format gives its
 // own layer profile back at every node; the featherlab_files generator reads file n + 1 for
 // instance n; damaged files are refused with InputFileError naming the file, the line and the
@@ -17,6 +18,7 @@
 
 #include "plumage/featherlab_section.hpp"
 #include "plumage/input_file.hpp"
+#include "plumage/simulation.hpp"
 #include "plumage/species_config.hpp"
 #include "plumage/structure_generator.hpp"
 #include "test_registry.hpp"
@@ -79,8 +81,8 @@ FeatherLabImportOptions rockdove_options() {
 }
 
 // A flat barbule 10 µm wide: the top at y = 0 and one curve under each layer; the melanin ratio
-// rising from 0.8 to 1.0 along the interior vertices.
-FeatherLabTexts flat_texts() {
+// rising from 0.8 to 1.0 along the interior vertices (or 0.9 everywhere).
+FeatherLabTexts flat_texts(bool constant_ratio = false) {
   std::vector<Polyline> curves(5);
   double depth = 0.0;
   for (std::size_t c = 0; c < curves.size(); ++c) {
@@ -88,7 +90,9 @@ FeatherLabTexts flat_texts() {
     if (c < kFlatThicknessNm.size()) depth += kFlatThicknessNm[c];
   }
   std::vector<double> ratio;
-  for (int k = 1; k + 1 < kFlatVertices; ++k) ratio.push_back(0.8 + 0.2 * (k - 1) / (kFlatVertices - 3));
+  for (int k = 1; k + 1 < kFlatVertices; ++k) {
+    ratio.push_back(constant_ratio ? 0.9 : 0.8 + 0.2 * (k - 1) / (kFlatVertices - 3));
+  }
   return featherlab_texts(curves, ratio);
 }
 
@@ -204,6 +208,49 @@ TEST_CASE("featherlab import: featherlab_files reads file n + 1 for instance n",
   refused(head + layers + "  melanin_ratio_layer: 7\n", "melanin_ratio_layer");
   refused("species: x\nreflection: {model: multilayer}\nstructure:\n  generator: featherlab_files\n"
           "  instances: nowhere\n" + layers, "instances");
+}
+
+TEST_CASE("featherlab import: the flat barbule's far field is validation_shape slab's", "[featherlab-import]") {
+  const fs::path dir = scratch("slab");
+  fs::create_directories(dir / "geometry");
+  write_instance(dir / "geometry", 1, flat_texts(true));
+  write_text(dir / "featherlab.yaml",
+             "species: featherlab-flat\nreflection: {model: multilayer}\nstructure:\n  generator: featherlab_files\n"
+             "  instances: geometry\n  layers: [keratin, air, {mix: [air, melanin], fraction: 0.9}, keratin]\n"
+             "  melanin_ratio_layer: 3\n");
+  write_text(dir / "slab.yaml",
+             "species: slab-flat\nreflection: {model: multilayer}\n"
+             "structure:\n  generator: validation_shape\n  shape: slab\n  width_um: 10\n  spacing_nm: 250\n"
+             "  stack:\n    layers:\n      - {material: keratin, thickness_nm: 595}\n"
+             "      - {material: air, thickness_nm: 500}\n"
+             "      - {material: {mix: [air, melanin], fraction: 0.9}, thickness_nm: 2310}\n"
+             "      - {material: keratin, thickness_nm: 595}\n    substrate: air\n");
+  const SpeciesConfig imported = load_species_config(dir / "featherlab.yaml", testing::registry());
+  const SpeciesConfig slab = load_species_config(dir / "slab.yaml", testing::registry());
+  REQUIRE(slab.structure->generate(0).top.size() == imported.structure->generate(0).top.size());
+  SimulationRequest request;
+  request.lambdas_nm = {450.0, 600.0};
+  request.theta_deg = {20.0};
+  request.instances = 1;
+  const FarFieldSet a = simulate(imported, request), b = simulate(slab, request);
+  REQUIRE(a.units.size() == 2);
+  REQUIRE(b.units.size() == 2);
+  for (std::size_t u = 0; u < a.units.size(); ++u) {
+    const FarField &fa = a.units[u].instances.at(0), &fb = b.units[u].instances.at(0);
+    double worst = 0.0, scale = 0.0;
+    for (int pol = 0; pol < 2; ++pol) {
+      REQUIRE(fa.field[pol].size() == fb.field[pol].size());
+      for (std::size_t d = 0; d < fa.field[pol].size(); ++d) {
+        for (int c = 0; c < 3; ++c) {
+          scale = std::max(scale, std::abs(fb.field[pol][d][c]));
+          worst = std::max(worst, std::abs(fa.field[pol][d][c] - fb.field[pol][d][c]));
+        }
+      }
+    }
+    REQUIRE(scale > 0.0);
+    WARN("featherlab flat barbule against validation_shape slab, unit " << u << ": relative difference " << worst / scale);
+    CHECK(worst / scale <= 1e-12);
+  }
 }
 
 namespace {
