@@ -8,6 +8,7 @@
 // field.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -81,8 +82,9 @@ FeatherLabImportOptions rockdove_options() {
 }
 
 // A flat barbule 10 µm wide: the top at y = 0 and one curve under each layer; the melanin ratio
-// rising from 0.8 to 1.0 along the interior vertices (or 0.9 everywhere).
-FeatherLabTexts flat_texts(bool constant_ratio = false) {
+// rising from 0.8 to 1.0 along the interior vertices (or 0.9 everywhere); written left to right
+// or, as the same section, right to left.
+FeatherLabTexts flat_texts(bool constant_ratio = false, bool right_to_left = false) {
   std::vector<Polyline> curves(5);
   double depth = 0.0;
   for (std::size_t c = 0; c < curves.size(); ++c) {
@@ -92,6 +94,10 @@ FeatherLabTexts flat_texts(bool constant_ratio = false) {
   std::vector<double> ratio;
   for (int k = 1; k + 1 < kFlatVertices; ++k) {
     ratio.push_back(constant_ratio ? 0.9 : 0.8 + 0.2 * (k - 1) / (kFlatVertices - 3));
+  }
+  if (right_to_left) {
+    for (Polyline& c : curves) std::reverse(c.begin(), c.end());
+    std::reverse(ratio.begin(), ratio.end());
   }
   return featherlab_texts(curves, ratio);
 }
@@ -104,7 +110,9 @@ double expected_flat_fraction(int node) {
 }  // namespace
 
 TEST_CASE("featherlab import: a flat four-layer barbule gives its stack at every node", "[featherlab-import]") {
-  const CrossSection cs = parse_featherlab_instance(flat_texts(), rockdove_options());
+  const bool right_to_left = GENERATE(false, true);
+  INFO((right_to_left ? "written right to left" : "written left to right"));
+  const CrossSection cs = parse_featherlab_instance(flat_texts(false, right_to_left), rockdove_options());
   CHECK(validate(cs).empty());
   REQUIRE(cs.top.size() == kFlatVertices);
   REQUIRE(cs.layered);
@@ -288,7 +296,7 @@ TEST_CASE("featherlab import: bad files are refused naming the file, the line an
   check_refused(t, "xyvals1.txt", "line 6: x: 'abc' is not a number");
   // x going backwards within the top.
   t.xyvals = replace_line(good.xyvals, 10, "-6,0");
-  check_refused(t, "xyvals1.txt", "line 10: x: curve 1 does not run left to right");
+  check_refused(t, "xyvals1.txt", "line 10: x: curve 1 is not monotone");
 
   t = good;
   t.info = replace_line(good.info, 5, "164,40");  // one vertex short of the rows

@@ -2,6 +2,7 @@
 // separated by commas (what MATLAB's writematrix writes) or by blanks, each row checked as it is
 // read, and the curves of info cut out of the vertices of xyvals. Every refusal names the file,
 // the line and the field.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -125,7 +126,7 @@ std::vector<Vec2> read_vertices(const FeatherLabTexts& t, double nm_per_unit, st
 
 // The curves info cuts out of the vertices: consecutive, without gaps, covering every row.
 std::vector<Polyline> cut_curves(const FeatherLabTexts& t, const std::vector<Vec2>& vertices,
-                                 const std::vector<std::size_t>& vertex_lines) {
+                                 const std::vector<std::size_t>& vertex_lines, bool& reversed_top) {
   const std::vector<Row> rows = read_rows(t.info, t.info_name, 2, "start,count", kMaxFeatherLabVertices);
   if (rows.size() < 2) {
     fail_at(t.info_name, rows.front().line, "1 curve: a section needs at least the top and the bottom surface");
@@ -151,12 +152,17 @@ std::vector<Polyline> cut_curves(const FeatherLabTexts& t, const std::vector<Vec
               curve + " is closed (a melanosome or bubble outline): only layered instances, open curves from the "
                       "top surface to the bottom surface, are read");
     }
+    // Written right to left (x decreasing strictly): the same curve, turned round.
+    const bool reversed = line.back().x < line.front().x;
+    if (reversed) std::reverse(line.begin(), line.end());
     for (std::size_t k = 1; k < line.size(); ++k) {
       if (!(line[k].x > line[k - 1].x)) {
-        fail_at(t.xyvals_name, vertex_lines[start + k],
-                "x: " + curve + " does not run left to right (x must increase strictly along a layer boundary)");
+        const std::size_t row = reversed ? start + n - 1 - k : start + k;
+        fail_at(t.xyvals_name, vertex_lines[row],
+                "x: " + curve + " is not monotone (x must increase, or decrease, strictly along a layer boundary)");
       }
     }
+    if (curves.empty()) reversed_top = reversed;
     curves.push_back(std::move(line));
     next = start + n;
   }
@@ -192,13 +198,18 @@ FeatherLabCurves read_featherlab_curves(const FeatherLabTexts& t, const FeatherL
   std::vector<std::size_t> lines;
   const std::vector<Vec2> vertices = read_vertices(t, 1000.0 * o.um_per_unit, lines);
   FeatherLabCurves out;
-  out.curves = cut_curves(t, vertices, lines);
+  bool reversed_top = false;
+  out.curves = cut_curves(t, vertices, lines, reversed_top);
   if (out.curves.size() != o.layers.size() + 1) {
     throw InputFileError(t.info_name, std::to_string(out.curves.size()) + " curves, so " +
                                           std::to_string(out.curves.size() - 1) + " layers between them, but `layers` gives " +
                                           std::to_string(o.layers.size()) + " materials");
   }
-  if (o.melanin_ratio_layer) out.melanin_ratio = read_melanin_ratio(t, out.curves.front().size());
+  if (o.melanin_ratio_layer) {
+    out.melanin_ratio = read_melanin_ratio(t, out.curves.front().size());
+    // The ratios follow the top's vertices as written.
+    if (reversed_top) std::reverse(out.melanin_ratio.begin(), out.melanin_ratio.end());
+  }
   return out;
 }
 
