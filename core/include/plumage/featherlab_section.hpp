@@ -58,8 +58,8 @@ inline constexpr std::size_t kMaxFeatherLabVertices = std::size_t{1} << 24;
 // number, a row of the wrong number of fields, counts that do not tile xyvals (a first start
 // other than 0, a gap, an overlap, a total other than the rows of xyvals), fewer than 2 curves,
 // a curve of fewer than 2 vertices, a closed curve (a melanosome or bubble outline: the
-// non-layered types 4-7 are not read), a curve whose x is not strictly monotone (one written right
-// to left is turned round, the melanin ratio with the top),
+// non-layered types 4-7 are not read), a top whose x is not strictly monotone (a curve written
+// right to left is turned round, the melanin ratio with the top),
 // a number of curves other than `layers` + 1, a melanin ratio file of a length other than the
 // top's vertices - 2 or with a value outside [0, 1], and a section that validate()
 // (cross_section.hpp: self-intersecting or crossing curves, regions outside the body) refuses.

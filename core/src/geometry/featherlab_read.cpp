@@ -152,14 +152,16 @@ std::vector<Polyline> cut_curves(const FeatherLabTexts& t, const std::vector<Vec
               curve + " is closed (a melanosome or bubble outline): only layered instances, open curves from the "
                       "top surface to the bottom surface, are read");
     }
-    // Written right to left (x decreasing strictly): the same curve, turned round.
+    // Written right to left: the same curve, turned round.
     const bool reversed = line.back().x < line.front().x;
     if (reversed) std::reverse(line.begin(), line.end());
-    for (std::size_t k = 1; k < line.size(); ++k) {
+    // The top must be a graph over x (cross_section.hpp); a boundary below it may curl at its ends,
+    // as the chain of a melanosome row does round its last melanosome.
+    for (std::size_t k = 1; curves.empty() && k < line.size(); ++k) {
       if (!(line[k].x > line[k - 1].x)) {
         const std::size_t row = reversed ? start + n - 1 - k : start + k;
-        fail_at(t.xyvals_name, vertex_lines[row],
-                "x: " + curve + " is not monotone (x must increase, or decrease, strictly along a layer boundary)");
+        fail_at(t.xyvals_name, vertex_lines[row], "x: curve 1, the top surface, is not monotone (x must increase, or "
+                                                  "decrease, strictly along it)");
       }
     }
     if (curves.empty()) reversed_top = reversed;
