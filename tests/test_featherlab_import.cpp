@@ -133,6 +133,8 @@ TEST_CASE("featherlab import: a flat four-layer barbule gives its stack at every
     REQUIRE(p.layers[2].material.kind() == Material::Kind::mixture);
     CHECK(p.layers[2].material.host().kind() == Material::Kind::air);
     CHECK(p.layers[2].material.guest().kind() == Material::Kind::melanin);
+    // Node 0 and node 40: the normal line passes through the boundary's end vertex (layer_profile_at
+    // used to walk to the far end there and take the last segment's fraction).
     CHECK(p.layers[2].material.fraction() == Approx(expected_flat_fraction(node)).epsilon(1e-12));
     CHECK(p.layers[3].material.kind() == Material::Kind::keratin);
     CHECK(p.substrate.kind() == Material::Kind::air);
