@@ -8,6 +8,7 @@ namespace plumage {
 void register_validation_shape(PluginRegistry& registry);     // geometry/validation_shape.cpp
 void register_xsec_file(PluginRegistry& registry);            // geometry/xsec_file.cpp
 void register_svg_file(PluginRegistry& registry);             // geometry/svg_file.cpp
+void register_featherlab_file(PluginRegistry& registry);      // geometry/featherlab_file.cpp
 void register_approximate_ladder(PluginRegistry& registry);    // solver/approximate_ladder.cpp
 void register_approximate_benchmark(PluginRegistry& registry); // solver/approximate_benchmark.cpp
 void register_fit_ladder(PluginRegistry& registry);            // fit/fit_ladder.cpp
@@ -19,6 +20,7 @@ void register_builtin_plugins(PluginRegistry& registry) {
   register_validation_shape(registry);
   register_xsec_file(registry);
   register_svg_file(registry);
+  register_featherlab_file(registry);
   register_approximate_solver(registry);
   register_approximate_ladder(registry);
   register_approximate_benchmark(registry);

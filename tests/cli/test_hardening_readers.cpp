@@ -217,3 +217,24 @@ TEST_CASE("readers CLI: a bad SVG cross section exits 2 naming the file and the 
   CHECK_THAT(r.output, Catch::Contains((dir / "open-0.svg").string() + ": element 'film' (line 3): open outline"));
   CHECK_FALSE(fs::exists(dir / "out" / "traced-0.xsec"));
 }
+
+TEST_CASE("readers CLI: a bad FeatherLab file exits 2 naming the file and the line", "[hardening-readers]") {
+  // Issue 25 (b): a species whose structure is featherlab_files over an xyvals with a NaN.
+  const fs::path dir = scratch("featherlab");
+  fs::create_directories(dir / "geometry");
+  std::string xy, info, ratio;
+  for (int c = 0; c < 3; ++c) {
+    info += std::to_string(11 * c) + ",11\n";
+    for (int k = 0; k < 11; ++k) xy += std::to_string(-5 + k) + "," + (c == 1 && k == 4 ? "NaN" : std::to_string(-c)) + "\n";
+  }
+  write_bytes(dir / "geometry" / "xyvals1.txt", xy);
+  write_bytes(dir / "geometry" / "info1.txt", info);
+  write_bytes(dir / "featherlab.yaml",
+              "species: featherlab\nreflection: {model: multilayer}\n"
+              "structure: {generator: featherlab_files, instances: geometry, layers: [keratin, melanin]}\n");
+  const Result r = run("geometry " + (dir / "featherlab.yaml").string() + " --no-svg --no-png --out " + (dir / "out").string());
+  INFO(r.output);
+  CHECK(r.status == 2);
+  CHECK_THAT(r.output, Catch::Contains((dir / "geometry" / "xyvals1.txt").string() + ": line 16: y: NaN is not a finite number"));
+  CHECK_FALSE(fs::exists(dir / "out" / "featherlab-0.xsec"));
+}

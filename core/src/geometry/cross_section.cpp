@@ -79,7 +79,11 @@ Hit intersect(const LayerBoundary& b, Vec2 p, Vec2 t) {
   const auto& pts = b.points;
   const std::size_t n = pts.size();
   const double v0 = dot(t, pts.front() - p), v1 = dot(t, pts.back() - p);
-  if ((v0 < 0.0) != (v1 < 0.0) || v0 == 0.0 || v1 == 0.0) {
+  // The line through an end vertex: that end's segment (the bisection below, which needs a sign
+  // change, would otherwise walk to the far end and extrapolate the last segment back).
+  if (v0 == 0.0) return intersect_segment(b, 0, p, t);
+  if (v1 == 0.0) return intersect_segment(b, n - 2, p, t);
+  if ((v0 < 0.0) != (v1 < 0.0)) {
     // Bisection on vertex indices keeps one bracketing segment.
     std::size_t lo = 0, hi = n - 1;
     const bool lo_neg = v0 < 0.0;
