@@ -231,4 +231,13 @@ TEST_CASE("fit spec: refusals name the spec's file, line and field", "[structure
              Contains("more values than parameters"));
   CHECK_THAT(refusal("model: crystal_table\nconfig: film.yaml\nparameters: []\n" + target),
              Contains("bad.yaml:"));
+  // The base nominal_stack of a species whose variant has its own: loads, but cannot be fitted.
+  const fs::path insensitive = write_file("insensitive.yaml",
+      "model: nominal_stack\nconfig: " + source_path("configs/species/rockdove.yaml") + "\nvariant: forest\n"
+      "parameters:\n  - {path: nominal_stack.layers.0.thickness_nm, bounds: [450, 750]}\n" + target);
+  const FitSpec spec_insensitive = load_fit_spec(insensitive, testing::registry());
+  const auto model = make_forward_model(spec_insensitive, testing::registry());
+  CHECK_THROWS_WITH(fit_structure(spec_insensitive, *model),
+                    Contains("insensitive.yaml:5:") && Contains("parameters[0].path") &&
+                        Contains("does not change the prediction"));
 }

@@ -58,7 +58,8 @@ struct FitParameter {
   double lower = 0.0, upper = 0.0;
   std::optional<double> start;  // default: the file's own value
   double file_value = 0.0;      // the value in the file (checked to be a number)
-  SourceMark mark;              // the parameter's entry in the spec (for messages)
+  SourceMark mark;              // the parameter's path in the spec (for messages)
+  std::string field;            // its field there, "parameters[0].path"
 };
 
 // One reflectance to fit: R at (λ, θ), its standard deviation (σ) and polarization.

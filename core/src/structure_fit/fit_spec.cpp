@@ -246,7 +246,8 @@ FitSpec load_fit_spec(const std::filesystem::path& file, const PluginRegistry& r
     const ParameterOptions& p = o.parameters[i];
     if (!(p.bounds.first < p.bounds.second)) items[i].fail("bounds", "lower bound must be below the upper one");
     FitParameter f{p.path, p.bounds.first, p.bounds.second, p.start,
-                   number_at(config.root(), p.path, items[i], spec.config.string()), items[i].mark()};
+                   number_at(config.root(), p.path, items[i], spec.config.string()), items[i].mark_of("path"),
+                   items[i].path_of("path")};
     const double start = p.start.value_or(f.file_value);
     if (start < f.lower || start > f.upper)
       items[i].fail(p.start ? "start" : "path", "start " + format_param_number(start) + (p.start ? "" : " (the file's value)") +

@@ -157,9 +157,35 @@ void covariance_of(const FitSpec& spec, Solved& best, FitResult& out) {
     out.covariance_note = "JᵀJ is singular: a parameter does not change the prediction, or two change it alike";
     return;
   }
+  for (std::size_t j = 0; j < n; ++j) {
+    if (!std::isfinite(c[j * n + j]) || c[j * n + j] <= 0.0) {
+      out.covariance_note = "JᵀJ is singular at the best values: " + spec.parameters[j].path + " has no finite variance";
+      return;
+    }
+  }
   for (std::size_t j = 0; j < n; ++j) out.sigma[j] = std::sqrt(out.reduced_chi2 * c[j * n + j]);
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t k = 0; k < n; ++k) out.correlation[j * n + k] = c[j * n + k] / std::sqrt(c[j * n + j] * c[k * n + k]);
+}
+
+// Every parameter must change the prediction at the first start (else the fit cannot determine it:
+// e.g. the base nominal_stack of a species whose variant has its own). ConfigError at the spec.
+void check_sensitivity(const FitSpec& spec, const StructureForwardModel& model, std::size_t& evaluations) {
+  const std::size_t n = spec.parameters.size(), m = spec.targets.size();
+  DifferencedResiduals cost(spec, model, evaluations);
+  std::vector<double> x = start_point(spec, 0), r(m), jacobian(m * n);
+  const double* parameters[] = {x.data()};
+  double* jacobians[] = {jacobian.data()};
+  if (!cost.Evaluate(parameters, r.data(), jacobians))
+    throw Error(spec.file.string() + ": the model cannot be evaluated at or beside the first start: " + cost.last_error());
+  for (std::size_t j = 0; j < n; ++j) {
+    bool changes = false;
+    for (std::size_t i = 0; i < m; ++i) changes = changes || jacobian[i * n + j] != 0.0;
+    if (!changes)
+      throw ConfigError(spec.parameters[j].mark, spec.parameters[j].field,
+                        "'" + spec.parameters[j].path + "' does not change the prediction (is it replaced by the variant, "
+                        "or not used by the model?)");
+  }
 }
 
 }  // namespace
@@ -170,6 +196,7 @@ FitResult fit_structure(const FitSpec& spec, const StructureForwardModel& model,
   const auto wall0 = std::chrono::steady_clock::now();
   FitResult out;
   std::vector<Solved> solved;
+  check_sensitivity(spec, model, out.evaluations);
   for (std::size_t k = 0; k < static_cast<std::size_t>(spec.starts); ++k) {
     solved.push_back(solve_from(spec, model, start_point(spec, k), out.evaluations));
     out.starts.push_back(solved.back().start);
