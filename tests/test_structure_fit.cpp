@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/error.hpp"
 #include "plumage/input_file.hpp"
@@ -261,4 +262,21 @@ TEST_CASE("fit spec: refusals name the spec's file, line and field", "[structure
   CHECK_THROWS_WITH(fit_structure(spec_insensitive, *model),
                     Contains("insensitive.yaml:5:") && Contains("parameters[0].path") &&
                         Contains("does not change the prediction"));
+}
+
+TEST_CASE("ConfigDocument::derive indexes lists (a fit parameter's path)", "[structure-fit]") {
+  const ConfigDocument doc = ConfigDocument::parse(
+      "stack:\n  layers:\n    - {material: keratin, thickness_nm: 300}\n    - {material: air, thickness_nm: 200}\n", "doc");
+  const ConfigDocument d = ConfigDocument::derive(doc.root(), {{"stack.layers.1.thickness_nm", "250"}}, "/tmp", "derived");
+  const std::vector<ParamView> layers = d.root().child("stack").items("layers");
+  REQUIRE(layers.size() == 2);
+  CHECK(layers[0].number("thickness_nm") == 300.0);
+  CHECK(layers[1].number("thickness_nm") == 250.0);
+  CHECK(layers[1].text("material") == "air");
+  // The source is untouched.
+  CHECK(doc.root().child("stack").items("layers")[1].number("thickness_nm") == 200.0);
+  CHECK_THROWS_WITH(ConfigDocument::derive(doc.root(), {{"stack.layers.2.thickness_nm", "1"}}, "/tmp", "derived"),
+                    Contains("no list item '2'") && Contains("2 items"));
+  CHECK_THROWS_WITH(ConfigDocument::derive(doc.root(), {{"stack.layers.x.thickness_nm", "1"}}, "/tmp", "derived"),
+                    Contains("no list item 'x'"));
 }
