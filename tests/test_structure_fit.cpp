@@ -196,6 +196,29 @@ TEST_CASE("fit: a mallard crystal cell's rod diameter (FDTD, coarse grid)", "[st
   CHECK(r.evaluations > 0);
 }
 
+// The whole barbule (plumage simulate: approximate solver, 2 instances) as the forward model.
+TEST_CASE("fit: the rock dove barbule's cortex through the whole-barbule simulation", "[structure-fit]") {
+  const fs::path spec_file = write_file("barbule-fit.yaml",
+      "model: barbule\nconfig: " + source_path("configs/species/rockdove.yaml") +
+      "\nvariant: forest\ninstances: 2\nrelative_step: 0.01\n"
+      "parameters:\n  - {path: variants.forest.structure.cortex_nm, bounds: [540, 650], start: 570}\n"
+      "target:\n  points:\n" + point_list(420, 690, 30, {0.0}, "unpolarized"));
+  FitSpec spec = load_fit_spec(spec_file, testing::registry());
+  const auto model = make_forward_model(spec, testing::registry());
+  make_synthetic(spec, *model, {595.0}, 0.005, 9);
+  const FitResult r = fit_structure(spec, *model);
+  INFO(fit_summary_text(spec, *model, r));
+  REQUIRE(r.covariance_note.empty());
+  CHECK(std::abs(r.value[0] - 595.0) < 3.0 * r.sigma[0]);
+  CHECK(r.sigma[0] > 0.01);
+  CHECK(r.sigma[0] < 10.0);
+  const fs::path out = temp_dir() / "barbule-out";
+  write_fit_outputs(spec, *model, r, out, false);
+  const SpeciesConfig fitted = load_species_config(out / "fitted.yaml", testing::registry());
+  CHECK(fitted.variant == "forest_fit");
+  CHECK(fitted.root.child("structure").number("cortex_nm") == Approx(r.value[0]).epsilon(1e-12));
+}
+
 // FDTD at preview fidelity (15 nm): ~0.8 s CPU per evaluation, 2 parameters: 84 s CPU (validation).
 TEST_CASE("fit: a mallard crystal cell's rod diameter and row spacing (FDTD preview)", "[.][structure-fit-crystal]") {
   const fs::path spec_file = write_file("crystal-fit.yaml",

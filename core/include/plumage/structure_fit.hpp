@@ -19,10 +19,13 @@
 //   crystal_table   the crystal cell through a TableBuilder plug-in (`fdtd_periodic`, or any other,
 //                   e.g. `rcwa`) on the tiny grid of the targets' λ × cos θ × {cos φ = 1}: the
 //                   specular Jones reflection of the cell in the plane of incidence across the rods.
-// The whole-barbule simulation (simulate) is not offered as a model (yet).
+//   barbule         the whole barbule through the species' solver (`plumage simulate`, paper §4):
+//                   the instance-mean reflectance density (Eq. 10) integrated over the pattern
+//                   directions φ_o ∈ (−90°, 90°), incidence in the cross-section plane at φ_i = θ
+//                   (θ_i = 0: pol 1 is s, pol 2 is p). Seconds to minutes per evaluation.
 //
 // The fit spec (YAML, docs/formats.md "fit spec"; parameters in docs/parameters.md, "fit spec"):
-//   model: nominal_stack            # | crystal_table
+//   model: nominal_stack            # | crystal_table | barbule
 //   config: ../species/rockdove.yaml   # species (nominal_stack) or crystal file (crystal_table)
 //   variant: forest                 # species variant (nominal_stack; default: the file's)
 //   builder: {type: fdtd_periodic, fidelity: preview}   # crystal_table: the TableBuilder and its options
@@ -49,7 +52,7 @@
 
 namespace plumage {
 
-enum class FitModel { nominal_stack, crystal_table };
+enum class FitModel { nominal_stack, crystal_table, barbule };
 enum class FitPolarization { unpolarized, s, p };
 
 // One fitted number: a YAML path in the model's file and its bounds.
@@ -80,6 +83,7 @@ struct FitSpec {
   std::vector<FitParameter> parameters;
   std::vector<FitTarget> targets;
   std::filesystem::path measured;  // the measured file, when the targets came from one
+  int instances = 4;  // barbule: instances simulated per evaluation (0: the species' simulation.instances)
   int starts = 1;
   std::uint64_t seed = 1;
   int max_iterations = 50;

@@ -43,7 +43,7 @@ struct TargetOptions {
 struct SpecOptions {
   FitModel model = FitModel::nominal_stack;
   std::string config, variant, fitted_name;
-  int starts = 1;
+  int starts = 1, instances = 4;
   std::int64_t seed = 1;
   int max_iterations = 50;
   double relative_step = 1e-4;
@@ -55,7 +55,8 @@ const std::vector<std::pair<std::string_view, FitPolarization>> kPolarizations{
     {"unpolarized", FitPolarization::unpolarized}, {"s", FitPolarization::s}, {"p", FitPolarization::p}};
 
 const std::vector<std::pair<std::string_view, FitModel>> kModels{{"nominal_stack", FitModel::nominal_stack},
-                                                                  {"crystal_table", FitModel::crystal_table}};
+                                                                  {"crystal_table", FitModel::crystal_table},
+                                                                  {"barbule", FitModel::barbule}};
 
 const ParamTable<ParameterOptions>& parameter_table() {
   using P = ParameterOptions;
@@ -113,8 +114,9 @@ const ParamTable<SpecOptions>& spec_table() {
   static const auto t =
       ParamTable<S>{}
           .choice("model", &S::model, kModels, required,
-                  "forward model: a species' nominal_stack through its reflection, or a crystal cell's table builder")
-          .text("config", &S::config, required, "species (nominal_stack) or crystal file (crystal_table), beside the spec")
+                  "forward model: a species' nominal_stack through its reflection, a crystal cell's table builder, or "
+                  "the whole barbule through the species' solver (plumage simulate)")
+          .text("config", &S::config, required, "species (nominal_stack, barbule) or crystal file (crystal_table), beside the spec")
           .text("variant", &S::variant, "", "species variant (default: the file's)")
           .custom("builder", "map", "-", "required for crystal_table",
                   "{type: <table_builder>, ...its own parameters} (e.g. {type: fdtd_periodic, fidelity: preview})",
@@ -126,6 +128,8 @@ const ParamTable<SpecOptions>& spec_table() {
                   })
           .nested_specs(parameter_table().specs())
           .section("target", &S::target, target_table(), "what to fit", true)
+          .integer("instances", &S::instances, "1", 4, Limits::closed(0, 1000),
+                   "barbule model: instances simulated per evaluation (0: the species' simulation.instances)")
           .integer("starts", &S::starts, "1", 1, Limits::closed(1, 1000), "starts: the spec's, then a Halton sequence")
           .integer("seed", &S::seed, "1", 1, Limits::non_negative(), "offset into the Halton sequence of starts")
           .integer("max_iterations", &S::max_iterations, "1", 50, Limits::closed(1, 10000), "per start")
@@ -205,12 +209,15 @@ void read_targets(const ParamView& root, const SpecOptions& o, FitSpec& spec) {
 // The model's file loaded once as the model would (a species with its variant, a crystal cell), so
 // that a bad file fails here, naming itself.
 void check_model_file(const ParamView& root, FitSpec& spec, const PluginRegistry& registry) {
-  if (spec.model == FitModel::nominal_stack) {
+  if (spec.model != FitModel::crystal_table) {
     if (root.has("builder")) root.fail("builder", "only the crystal_table model has a table builder");
     const SpeciesConfig s = load_species_config(spec.config, registry, spec.variant);
     spec.variant = s.variant;
-    if (!s.reflection || (!s.nominal_stack && !s.nominal_stack_from_structure))
+    if (spec.model == FitModel::barbule) {
+      (void)required_structure(s);
+    } else if (!s.reflection || (!s.nominal_stack && !s.nominal_stack_from_structure)) {
       root.fail("config", spec.config.string() + " has no nominal_stack and reflection to predict a spectrum from");
+    }
   } else {
     // Looked at through yaml-cpp: a child view of `builder` would make finish() refuse its keys.
     if (!root.has("builder") || !root.state()->node["builder"].IsMap())
@@ -235,6 +242,7 @@ FitSpec load_fit_spec(const std::filesystem::path& file, const PluginRegistry& r
   spec.config = file.parent_path() / o.config;
   spec.variant = o.variant;
   spec.starts = o.starts;
+  spec.instances = o.instances;
   spec.seed = static_cast<std::uint64_t>(o.seed);
   spec.max_iterations = o.max_iterations;
   spec.relative_step = o.relative_step;
@@ -259,7 +267,7 @@ FitSpec load_fit_spec(const std::filesystem::path& file, const PluginRegistry& r
   read_targets(root, o, spec);
   spec.fitted_name = o.fitted_name;
   if (spec.fitted_name.empty()) {
-    spec.fitted_name = spec.model == FitModel::nominal_stack ? spec.variant + "_fit"
+    spec.fitted_name = spec.model != FitModel::crystal_table ? spec.variant + "_fit"
                                                              : load_crystal_cell(spec.config).name + "-fit";
   }
   return spec;

@@ -9,7 +9,9 @@
 #include "plumage/config_document.hpp"
 #include "plumage/crystal_cell.hpp"
 #include "plumage/layer_profile.hpp"
+#include "plumage/far_field_set.hpp"
 #include "plumage/param_table.hpp"
+#include "plumage/simulation.hpp"
 #include "plumage/species_config.hpp"
 #include "plumage/stack_spectra.hpp"
 #include "plumage/structure_fit.hpp"
@@ -178,6 +180,56 @@ class CrystalTableModel final : public StructureForwardModel {
   std::string type_;
 };
 
+// barbule: `plumage simulate` of the species with the values in, at θ_i = 0 and φ_i = each target
+// θ, on the targets' wavelengths; R = the instance-mean Eq. 10 density integrated over the pattern
+// directions (midpoint rule on their uniform bins over (−90°, 90°)).
+class BarbuleModel final : public StructureForwardModel {
+ public:
+  BarbuleModel(const FitSpec& spec, const PluginRegistry& registry)
+      : spec_(spec), registry_(registry), base_(ConfigDocument::load(spec.config)) {
+    std::vector<double> l, t;
+    for (const FitTarget& x : spec.targets) l.push_back(x.lambda_nm), t.push_back(x.theta_deg);
+    request_.lambdas_nm = distinct(l);
+    request_.theta_deg = {0.0};
+    request_.phi_deg = distinct(t);
+    request_.instances = spec.instances;
+  }
+  std::vector<double> predict(const std::vector<double>& values) const override {
+    const ConfigDocument doc =
+        derived(base_.root(), overrides_for(spec_, values), base_.directory(), spec_.config.string());
+    const SpeciesConfig species = load_species_config(doc, registry_, spec_.variant);
+    const FarFieldSet set = simulate(species, request_);
+    std::vector<double> out;
+    for (const FitTarget& x : spec_.targets) {
+      const FarFieldUnit* unit = nullptr;
+      for (const FarFieldUnit& u : set.units)
+        if (std::abs(u.lambda_nm - x.lambda_nm) <= 1e-9 && std::abs(rad_to_deg(u.nominal.phi_rad) - x.theta_deg) <= 1e-6)
+          unit = &u;
+      if (!unit || unit->pattern_count == 0) throw Error("fit: simulate returned no unit at " + format_param_number(x.lambda_nm) + " nm");
+      const double bin = M_PI / static_cast<double>(unit->pattern_count);
+      double r[2] = {0.0, 0.0};
+      for (int pol = 0; pol < 2; ++pol) {
+        const std::vector<double> density = mean_reflectance_density(*unit, pol);
+        for (std::size_t d = 0; d < unit->pattern_count; ++d) r[pol] += density[d] * bin;
+      }
+      out.push_back(polarized(x.polarization, r[0], r[1]));
+    }
+    return out;
+  }
+  std::string description() const override {
+    return "barbule (simulate) of " + spec_.config.string() + " (variant " + spec_.variant + ", " +
+           (spec_.instances > 0 ? std::to_string(spec_.instances) : std::string("the config's")) + " instances) on " +
+           std::to_string(request_.lambdas_nm.size()) + " wavelengths x " + std::to_string(request_.phi_deg.size()) +
+           " angles";
+  }
+
+ private:
+  const FitSpec& spec_;
+  const PluginRegistry& registry_;
+  ConfigDocument base_;
+  SimulationRequest request_;
+};
+
 std::string emit_yaml(const YAML::Node& node) {
   YAML::Emitter out;
   out << node;
@@ -188,6 +240,7 @@ std::string emit_yaml(const YAML::Node& node) {
 
 std::unique_ptr<StructureForwardModel> make_forward_model(const FitSpec& spec, const PluginRegistry& registry) {
   if (spec.model == FitModel::nominal_stack) return std::make_unique<NominalStackModel>(spec, registry);
+  if (spec.model == FitModel::barbule) return std::make_unique<BarbuleModel>(spec, registry);
   return std::make_unique<CrystalTableModel>(spec, registry);
 }
 
