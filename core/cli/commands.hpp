@@ -11,6 +11,7 @@ void add_plugins_command(CLI::App& app, AppContext& context);
 void add_check_command(CLI::App& app, AppContext& context);
 void add_multilayer_command(CLI::App& app, AppContext& context);
 void add_spectra_command(CLI::App& app, AppContext& context);
+void add_fit_command(CLI::App& app, AppContext& context);  // cmd_fit.cpp (issue 25 part 3)
 void add_bench_command(CLI::App& app, AppContext& context);
 void add_simulate_command(CLI::App& app, AppContext& context);
 void add_geometry_command(CLI::App& app, AppContext& context);

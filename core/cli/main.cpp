@@ -45,6 +45,7 @@ int main(int argc, char** argv) {
   add_check_command(app, context);
   add_multilayer_command(app, context);
   add_spectra_command(app, context);
+  add_fit_command(app, context);
   add_simulate_command(app, context);
   add_bench_command(app, context);
   add_geometry_command(app, context);

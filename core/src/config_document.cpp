@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <algorithm>
+#include <charconv>
 #include <fstream>
 #include <sstream>
 
@@ -126,6 +127,20 @@ YAML::Node replaced(const YAML::Node& base, const std::vector<std::string>& part
     for (std::size_t i = 0; i <= k; ++i) w += (i ? "." : "") + parts[i];
     return w;
   }();
+  // A list item by its index ("layers.0.thickness_nm"): a new sequence, the other items reused.
+  if (base && base.IsSequence()) {
+    std::size_t index = 0;
+    const auto [end, ec] = std::from_chars(parts[k].data(), parts[k].data() + parts[k].size(), index);
+    if (ec != std::errc{} || end != parts[k].data() + parts[k].size() || index >= base.size()) {
+      throw ConfigError(where.mark(), where.path_of(walked),
+                        "no list item '" + parts[k] + "' (the list has " + std::to_string(base.size()) +
+                            " items, numbered from 0): cannot set '" + o.path + "' (" + o.source + ")");
+    }
+    YAML::Node out(YAML::NodeType::Sequence);
+    for (std::size_t i = 0; i < base.size(); ++i)
+      out.push_back(i != index ? base[i] : k + 1 == parts.size() ? value : replaced(base[i], parts, k + 1, value, o, where));
+    return out;
+  }
   if (base && !base.IsNull() && !base.IsMap()) {
     throw ConfigError(where.mark(), where.path_of(walked), "not a map: cannot set '" + o.path + "' (" + o.source + ")");
   }
