@@ -98,7 +98,7 @@ std::string stack_spectra_csv(const std::vector<StackSpectrum>& spectra, const M
 void draw_stack_spectra(const std::vector<StackSpectrum>& spectra, const std::filesystem::path& png,
                         const MeasuredSpectrum* measured) {
   LineChart chart;
-  chart.title = "Reflectance of the nominal layer stack (unpolarized)";
+  chart.title = "Reflectance of the nominal layer stack (unpolarized; one fixed stack, not the whole barbule)";
   chart.x_label = "wavelength (nm)";
   chart.y_label = "reflectance";
   for (const auto& s : spectra) {
