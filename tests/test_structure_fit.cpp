@@ -124,6 +124,28 @@ TEST_CASE("fit: a keratin film's thickness from a noisy synthetic spectrum (Airy
   CHECK(r.starts.size() == 3);
 }
 
+// One value, one parameter (the magpie worked cases): a solve. Its σ is the stated σ carried
+// through the model's slope: σ_d = σ / |dR/dd| (Airy formula), and s² is undefined.
+TEST_CASE("fit: one value for one parameter solves it, with sigma from the stated sigma", "[structure-fit]") {
+  write_file("film.yaml", film_species(380.0));
+  const double truth = 410.0, lambda = 520.0, sigma = 0.005;
+  const double n = keratin_index(lambda);
+  const fs::path spec_file = write_file("film-solve.yaml",
+      "model: nominal_stack\nconfig: film.yaml\nparameters:\n"
+      "  - {path: nominal_stack.layers.0.thickness_nm, bounds: [395, 425], start: 400}\n"
+      "target: {points: [{lambda_nm: 520, theta_deg: 0, R: " + std::to_string(airy_film(n, truth, lambda)) +
+      ", sigma: 0.005}]}\n");
+  FitSpec spec = load_fit_spec(spec_file, testing::registry());
+  const auto model = make_forward_model(spec, testing::registry());
+  const FitResult r = fit_structure(spec, *model);
+  INFO(fit_summary_text(spec, *model, r));
+  CHECK(r.value[0] == Approx(truth).margin(0.01));
+  const double slope = (airy_film(n, truth + 0.01, lambda) - airy_film(n, truth - 0.01, lambda)) / 0.02;
+  CHECK(r.sigma[0] == Approx(sigma / std::abs(slope)).epsilon(0.02));
+  CHECK(std::isnan(r.reduced_chi2));
+  CHECK_THAT(fit_summary_text(spec, *model, r), Contains("as many targets as parameters"));
+}
+
 TEST_CASE("fit: the rock dove's cortex and air gap from a noisy two-angle measured file", "[structure-fit]") {
   const std::string species = source_path("configs/species/rockdove.yaml");
   const std::string params =
@@ -271,9 +293,15 @@ TEST_CASE("fit spec: refusals name the spec's file, line and field", "[structure
   CHECK_THAT(refusal(head + "  - {path: nominal_stack.layers.0.thickness_nm, bounds: [300, 500]}\n"
                      "target: {measured: x.csv, points: [{lambda_nm: 500, R: 0.1}]}\n"),
              Contains("bad.yaml:") && Contains("not both or neither"));
-  CHECK_THAT(refusal(head + "  - {path: nominal_stack.layers.0.thickness_nm, bounds: [300, 500]}\n"
+  // Two parameters, one value: refused (one value for one parameter is a solve, allowed).
+  write_file("film2.yaml", "species: film2\ncommon_name: Two films\nvariant: plain\nvariants:\n  plain: {}\n"
+                           "nominal_stack:\n  layers:\n    - {material: keratin, thickness_nm: 380}\n"
+                           "    - {material: air, thickness_nm: 400}\n  substrate: melanin\nreflection: {model: multilayer}\n");
+  CHECK_THAT(refusal("model: nominal_stack\nconfig: film2.yaml\nparameters:\n"
+                     "  - {path: nominal_stack.layers.0.thickness_nm, bounds: [300, 500]}\n"
+                     "  - {path: nominal_stack.layers.1.thickness_nm, bounds: [300, 500]}\n"
                      "target: {points: [{lambda_nm: 500, R: 0.1}]}\n"),
-             Contains("more values than parameters"));
+             Contains("at least as many values as parameters"));
   CHECK_THAT(refusal("model: crystal_table\nconfig: film.yaml\nparameters: []\n" + target),
              Contains("bad.yaml:"));
   // The base nominal_stack of a species whose variant has its own: loads, but cannot be fitted.

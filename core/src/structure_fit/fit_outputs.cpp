@@ -93,7 +93,8 @@ std::string fit_summary_text(const FitSpec& spec, const StructureForwardModel& m
       << "], file " << p.file_value << ")" << (r.at_bound[j] ? "  AT A BOUND: sigma is not meaningful" : "") << "\n";
   }
   const std::size_t n = spec.parameters.size();
-  if (n > 1 && r.covariance_note.empty()) {
+  const bool have_sigma = !r.sigma.empty() && std::isfinite(r.sigma[0]);
+  if (n > 1 && (r.covariance_note.empty() || have_sigma)) {
     t << "correlation:\n";
     for (std::size_t j = 0; j < n; ++j) {
       for (std::size_t k = 0; k < n; ++k) t << (k ? " " : "  ") << std::setw(8) << std::setprecision(3) << r.correlation[j * n + k];
@@ -101,7 +102,7 @@ std::string fit_summary_text(const FitSpec& spec, const StructureForwardModel& m
     }
     t << std::setprecision(6);
   }
-  if (!r.covariance_note.empty()) t << "no uncertainty: " << r.covariance_note << "\n";
+  if (!r.covariance_note.empty()) t << (have_sigma ? "uncertainty: " : "no uncertainty: ") << r.covariance_note << "\n";
   t << "chi2 = " << r.chi2 << " over " << r.residuals << " values, reduced chi2 s^2 = " << r.reduced_chi2
     << " (sigma scaled by s)\n\nstarts (best marked *):\n";
   for (std::size_t k = 0; k < r.starts.size(); ++k) {

@@ -196,9 +196,11 @@ void read_targets(const ParamView& root, const SpecOptions& o, FitSpec& spec) {
     for (const PointOptions& p : o.target.points)
       spec.targets.push_back({p.lambda_nm, p.theta_deg, p.reflectance, p.sigma, p.polarization});
   }
-  if (spec.targets.size() < spec.parameters.size() + 1)
+  // As many values as parameters is a solve, not a fit: allowed (the worked magpie cells have one
+  // reference reflectance each), with σ from the targets' stated σ (structure_solve.cpp).
+  if (spec.targets.size() < spec.parameters.size())
     target.fail_here(std::to_string(spec.targets.size()) + " target values for " + std::to_string(spec.parameters.size()) +
-                     " parameters: a fit needs more values than parameters");
+                     " parameters: a fit needs at least as many values as parameters");
   for (const FitTarget& t : spec.targets) {
     if (!Limits::wavelength_nm().admits(t.lambda_nm) || t.theta_deg < 0 || t.theta_deg > 89)
       target.fail_here("target at " + format_param_number(t.lambda_nm) + " nm, " + format_param_number(t.theta_deg) +

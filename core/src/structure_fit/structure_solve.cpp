@@ -163,7 +163,11 @@ void covariance_of(const FitSpec& spec, Solved& best, FitResult& out) {
       return;
     }
   }
-  for (std::size_t j = 0; j < n; ++j) out.sigma[j] = std::sqrt(out.reduced_chi2 * c[j * n + j]);
+  // Exactly determined (m = n): no residual estimates the noise, so σ takes the targets' stated σ
+  // as they are (s² = 1), i.e. how far each parameter moves when a target moves by its σ.
+  const bool determined = out.residuals == n;
+  if (determined) out.covariance_note = "as many targets as parameters: σ from the targets' stated σ (s² = 1)";
+  for (std::size_t j = 0; j < n; ++j) out.sigma[j] = std::sqrt((determined ? 1.0 : out.reduced_chi2) * c[j * n + j]);
   for (std::size_t j = 0; j < n; ++j)
     for (std::size_t k = 0; k < n; ++k) out.correlation[j * n + k] = c[j * n + k] / std::sqrt(c[j * n + j] * c[k * n + k]);
 }
@@ -209,7 +213,8 @@ FitResult fit_structure(const FitSpec& spec, const StructureForwardModel& model,
   out.value = best.x;
   out.chi2 = best.start.chi2;
   out.residuals = spec.targets.size();
-  out.reduced_chi2 = out.chi2 / static_cast<double>(out.residuals - n);
+  out.reduced_chi2 = out.residuals > n ? out.chi2 / static_cast<double>(out.residuals - n)
+                                       : std::numeric_limits<double>::quiet_NaN();
   out.at_bound.resize(n);
   for (std::size_t j = 0; j < n; ++j) {
     const FitParameter& p = spec.parameters[j];
