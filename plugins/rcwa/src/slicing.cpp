@@ -51,6 +51,13 @@ void assign_slice_types(SlicedCell& cell) {
     if (it == reps.end()) reps.push_back(&s);
   }
   cell.n_types = static_cast<int>(reps.size());
+  cell.half_shift_type.assign(reps.size(), -1);
+  for (std::size_t t = 0; t < reps.size(); ++t) {
+    Slice shifted = *reps[t];
+    for (Box& b : shifted.boxes) b.x_center_nm = std::fmod(b.x_center_nm + 0.5 * cell.period_nm, cell.period_nm);
+    for (std::size_t u = 0; u < reps.size(); ++u)
+      if (same_geometry(*reps[u], shifted)) cell.half_shift_type[t] = static_cast<int>(u);
+  }
 }
 
 SlicedCell slice_crystal(const CrystalCell& c, int slices_per_row) {

@@ -31,6 +31,9 @@ struct SlicedCell {
   std::vector<Material> materials;  // [0] air (above), [1] host (between boxes and below)
   std::vector<Slice> slices;        // from the surface downward
   int n_types = 0;
+  // Per type: the type whose geometry is this one shifted by half a period (hexagonal odd rows), or
+  // −1. Its orders' amplitudes differ by (−1)^m only, so its S-matrix is D S D, D = diag((−1)^m).
+  std::vector<int> half_shift_type;
 };
 
 // Slices of `cell`: boundaries at every circle's top and bottom; an interval crossed by circles

@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <map>
+#include <vector>
 
 namespace plumage::rcwa {
 
@@ -134,6 +136,16 @@ SMatrix star(const SMatrix& a, const SMatrix& b) {
   return {a.s11 + D * b.s11 * a.s21, D * b.s12, F * a.s21, b.s22 + F * a.s22 * b.s12};
 }
 
+// The S-matrix of the same layers shifted by half a period: D S D with D = diag((−1)^m) on the
+// E_x and E_y blocks (ε_m → (−1)^m ε_m makes P, Q → D P D, D Q D, so W → D W, V → D V).
+SMatrix half_period_shift(const SMatrix& s, int M) {
+  const int n = 2 * M + 1;
+  Vec d(2 * n);
+  for (int a = 0; a < 2 * n; ++a) d(a) = ((a % n) - M) % 2 == 0 ? 1.0 : -1.0;
+  auto flip = [&](const Mat& m) { return Mat(d.asDiagonal() * m * d.asDiagonal()); };
+  return {flip(s.s11), flip(s.s12), flip(s.s21), flip(s.s22)};
+}
+
 // Half-space above (incident side, `top`) or below: its modes against the air gap.
 SMatrix half_space(const Modes& m, const Mat& V0, bool top) {
   const Mat A = m.W + V0.partialPivLu().solve(m.V), B = m.W - V0.partialPivLu().solve(m.V);
@@ -190,13 +202,37 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, 
   const Modes top = homogeneous_modes(eps_of[0], kx, ky), bottom = homogeneous_modes(eps_of[1], kx, ky);
   std::vector<SMatrix> by_type(cell.n_types);
   std::vector<bool> done(cell.n_types, false);
-  SMatrix total = half_space(top, V0, true);
-  for (const Slice& slice : cell.slices) {
+  auto slice_s = [&](const Slice& slice) -> const SMatrix& {
     if (!done[slice.type]) {
       by_type[slice.type] = slice_smatrix(slice_modes(slice, cell, eps_of, kx, ky, s), V0, k0 * slice.thickness_nm);
       done[slice.type] = true;
     }
-    total = star(total, by_type[slice.type]);
+    return by_type[slice.type];
+  };
+  // Rows repeat: the slices between two host-only slices (one row of rods, or two interleaved rows)
+  // form a chunk whose S-matrix is made once per entry and reused for every equal chunk.
+  std::map<std::vector<int>, SMatrix> chunks;
+  SMatrix total = half_space(top, V0, true);
+  for (std::size_t i = 0; i < cell.slices.size();) {
+    std::size_t j = i + 1;
+    if (!cell.slices[i].boxes.empty())
+      while (j < cell.slices.size() && !cell.slices[j].boxes.empty()) ++j;
+    std::vector<int> key;
+    for (std::size_t k = i; k < j; ++k) key.push_back(cell.slices[k].type);
+    auto it = chunks.find(key);
+    if (it == chunks.end()) {
+      std::vector<int> shifted_key;
+      for (int t : key) shifted_key.push_back(cell.half_shift_type.empty() ? -1 : cell.half_shift_type[t]);
+      const auto sh = chunks.find(shifted_key);
+      if (sh != chunks.end()) it = chunks.emplace(std::move(key), half_period_shift(sh->second, M)).first;
+    }
+    if (it == chunks.end()) {
+      SMatrix chunk = slice_s(cell.slices[i]);
+      for (std::size_t k = i + 1; k < j; ++k) chunk = star(chunk, slice_s(cell.slices[k]));
+      it = chunks.emplace(std::move(key), std::move(chunk)).first;
+    }
+    total = star(total, it->second);
+    i = j;
   }
   total = star(total, half_space(bottom, V0, false));
 

@@ -4,6 +4,9 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
+#include <string>
+
+#include "plumage/crystal_cell.hpp"
 
 #include "slicing.hpp"
 #include "solver.hpp"
@@ -134,4 +137,36 @@ TEST_CASE("rcwa: reciprocity of a blazed staircase (no mirror symmetry)", "[rcwa
     CHECK(std::abs(std::abs(a.sp) - std::abs(b.ps)) < 1e-10);
     CHECK(std::abs(a.sp) > 1e-4);  // conical incidence couples s and p: the check is not vacuous
   }
+}
+
+TEST_CASE("rcwa: TM convergence in harmonics with Li's rule beats Laurent's; slices converge as 1/S^2", "[rcwa]") {
+  const CrystalCell c = load_crystal_cell(std::string(PLUMAGE_SOURCE_DIR) + "/configs/crystals/mallard-green.yaml");
+  const SlicedCell sliced = slice_crystal(c, 6);
+  auto pp = [&](int M, bool li) { return std::norm(solve_entry(sliced, 545.0, 0.3, 0.5, {M, li}).jones.pp); };
+  const double li_ref = pp(20, true), laurent_ref = pp(20, false);
+  const double li_err = std::abs(pp(5, true) - li_ref), laurent_err = std::abs(pp(5, false) - laurent_ref);
+  std::printf("rcwa TM |r_pp|^2 at M = 5 vs M = 20: Li %.2e, Laurent %.2e\n", li_err, laurent_err);
+  CHECK(li_err < 2e-5);
+  CHECK(laurent_err > 5.0 * li_err);
+  // Staircase: the differences between 6, 12 and 24 slices shrink by ~4 (second order).
+  auto ss = [&](int S) { return std::norm(solve_entry(slice_crystal(c, S), 545.0, 0.3, 0.5, {5, true}).jones.ss); };
+  const double s6 = ss(6), s12 = ss(12), s24 = ss(24);
+  const double ratio = (s12 - s6) / (s24 - s12);
+  std::printf("rcwa |r_ss|^2 at 6/12/24 slices: %.6f %.6f %.6f (ratio %.2f)\n", s6, s12, s24, ratio);
+  CHECK(ratio > 3.0);
+  CHECK(ratio < 5.5);
+  CHECK(std::abs(s24 - s12) < 2e-3);
+}
+
+TEST_CASE("rcwa: the other_orders power appears only where a second order propagates", "[rcwa]") {
+  CrystalCell c = load_crystal_cell(std::string(PLUMAGE_SOURCE_DIR) + "/configs/crystals/mallard-green.yaml");
+  c.a_x_nm = 300;  // a wide period: at λ = 400 nm and normal incidence λ/a_x > 1 (specular only);
+  // at θ = 0, φ = 80° the order m = +1 has k_x = −sin 80° + 400/300 = 0.35 and propagates.
+  const SlicedCell sliced = slice_crystal(c, 6);
+  const EntryResult normal = solve_entry(sliced, 400.0, 0.0, 0.0, {5, true});
+  const EntryResult oblique = solve_entry(sliced, 400.0, 0.0, deg_to_rad(80.0), {5, true});
+  CHECK_FALSE(normal.has_other_orders);
+  CHECK(normal.other_orders[0] == 0.0);
+  CHECK(oblique.has_other_orders);
+  CHECK(oblique.other_orders[0] + oblique.other_orders[1] > 1e-6);
 }
