@@ -16,10 +16,10 @@ namespace {
 
 using Fidelity = BuilderParams::Fidelity;
 
-// Presets (NOTES.md "Production settings"): preview M = 4, 6 slices per rod diameter;
-// production M = 7, 12 slices: on mallard-green |Δ|r|²| < 1e-4 against M = 20 and ~2e-3 against the
+// Presets (NOTES.md "Production settings"): preview M = 3, 6 slices per rod diameter;
+// production M = 5, 12 slices: on mallard-green |Δ|r|²| < 1e-4 against M = 20 and ~2e-3 against the
 // slice-extrapolated limit (the staircase converges as 1/slices², NOTES.md).
-constexpr int kPreviewHarmonics = 4, kProductionHarmonics = 7;
+constexpr int kPreviewHarmonics = 3, kProductionHarmonics = 5;
 constexpr int kPreviewSlices = 6, kProductionSlices = 12;
 
 std::string fmt(double v, int digits = 4) {
@@ -35,9 +35,9 @@ const ParamTable<BuilderParams>& builder_params() {
   static const auto table =
       ParamTable<P>{}
           .choice("fidelity", &P::fidelity, {{"preview", Fidelity::preview}, {"production", Fidelity::production}},
-                  Fidelity::production, "preview (orders -4..4, 6 slices per rod diameter) or production (-7..7, 12)")
+                  Fidelity::production, "preview (orders -3..3, 6 slices per rod diameter) or production (-5..5, 12)")
           .integer("harmonics", &P::harmonics, "1", 0, Limits::closed(0, 60),
-                   "Fourier orders -M..M (2M+1 harmonics); 0: by fidelity (preview 4, production 7)")
+                   "Fourier orders -M..M (2M+1 harmonics); 0: by fidelity (preview 3, production 5)")
           .integer("slices_per_row", &P::slices_per_row, "1", 0, Limits::closed(0, 200),
                    "staircase slices per rod diameter (volume-preserving mean chords); 0: by fidelity (preview 6, "
                    "production 12)")

@@ -59,12 +59,14 @@ struct Modes {
 // Q of a slice (see solver.hpp) from [[ε]], A and the orders.
 Mat q_matrix(const Mat& eps, const Mat& a, const Vec& kx, double ky) {
   const int n = static_cast<int>(kx.size());
-  const Mat Kx = kx.asDiagonal();
-  Mat Q(2 * n, 2 * n);
-  Q.topLeftCorner(n, n) = -ky * Kx;
-  Q.topRightCorner(n, n) = Kx * Kx - eps;
-  Q.bottomLeftCorner(n, n) = a - ky * ky * Mat::Identity(n, n);
-  Q.bottomRightCorner(n, n) = ky * Kx;
+  // K_x is diagonal: applied as a scaling (O(n²)), never as a dense product.
+  Mat Q = Mat::Zero(2 * n, 2 * n);
+  Q.topLeftCorner(n, n).diagonal() = -ky * kx;
+  Q.topRightCorner(n, n) = -eps;
+  Q.topRightCorner(n, n).diagonal() += kx.cwiseProduct(kx);
+  Q.bottomLeftCorner(n, n) = a;
+  Q.bottomLeftCorner(n, n).diagonal().array() -= ky * ky;
+  Q.bottomRightCorner(n, n).diagonal() = ky * kx;
   return Q;
 }
 
@@ -91,13 +93,13 @@ Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<
                               .partialPivLu()
                               .inverse())
                     : E;
-  const Mat Kx = kx.asDiagonal();
+  const auto Kx = kx.asDiagonal();
   const Mat I = Mat::Identity(n, n);
   Mat P(2 * n, 2 * n);
-  P.topLeftCorner(n, n) = ky * Kx * Ei;
+  P.topLeftCorner(n, n) = ky * (Kx * Ei);
   P.topRightCorner(n, n) = I - Kx * Ei * Kx;
   P.bottomLeftCorner(n, n) = ky * ky * Ei - I;
-  P.bottomRightCorner(n, n) = -ky * Ei * Kx;
+  P.bottomRightCorner(n, n) = -ky * (Ei * Kx);
   const Mat Q = q_matrix(E, A, kx, ky);
   Eigen::ComplexEigenSolver<Mat> eig(P * Q);
   Modes m;
