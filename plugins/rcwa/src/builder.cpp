@@ -44,6 +44,9 @@ const ParamTable<BuilderParams>& builder_params() {
           .boolean("li_rule", &P::li_rule, true,
                    "Li's inverse rule for E_x (normal to the slice interfaces); false: Laurent's rule (slow TM "
                    "convergence, for comparison only)")
+          .boolean("richardson", &P::richardson, false,
+                   "Richardson extrapolation in slices, J = (4 J(S) - J(S/2))/3 (staircase error ~ 1/S^2): on "
+                   "mallard-green 5e-4 instead of 2.5e-3 at 1.7x the time")
           .integer("threads", &P::threads, "1", 2, Limits::closed(1, 64), "worker threads (independent entries)");
   return table;
 }
@@ -54,6 +57,7 @@ BuildSettings build_settings(const BuilderParams& p) {
   s.solver.harmonics = p.harmonics > 0 ? p.harmonics : (preview ? kPreviewHarmonics : kProductionHarmonics);
   s.solver.li_rule = p.li_rule;
   s.slices_per_row = p.slices_per_row > 0 ? p.slices_per_row : (preview ? kPreviewSlices : kProductionSlices);
+  s.richardson = p.richardson;
   return s;
 }
 
@@ -81,6 +85,7 @@ ReflectionTable RcwaTableBuilder::build(const CrystalCell& cell, const TableGrid
   check_memory(estimate_memory(cell, grid));
   const BuildSettings s = build_settings(params_);
   const SlicedCell sliced = slice_crystal(cell, s.slices_per_row);
+  const SlicedCell half = slice_crystal(cell, std::max(1, s.slices_per_row / 2));
   TableMetadata meta;
   meta.crystal = cell.name;
   meta.period_nm = cell.a_x_nm;
@@ -88,7 +93,8 @@ ReflectionTable RcwaTableBuilder::build(const CrystalCell& cell, const TableGrid
   meta.producer = std::string("plumage rcwa ") + kPluginVersion +
                   " fidelity=" + (params_.fidelity == Fidelity::preview ? "preview" : "production") +
                   " harmonics=" + std::to_string(s.solver.harmonics) + " slices_per_row=" +
-                  std::to_string(s.slices_per_row) + " li_rule=" + (s.solver.li_rule ? "on" : "off");
+                  std::to_string(s.slices_per_row) + " li_rule=" + (s.solver.li_rule ? "on" : "off") +
+                  (s.richardson ? " richardson=on" : "");
   ReflectionTable table(grid, meta);
   const std::size_t nl = grid.lambda_nm.size(), nt = grid.cos_theta.size(), np = grid.cos_phi.size();
   const std::size_t rows = nl * nt;
@@ -102,8 +108,9 @@ ReflectionTable RcwaTableBuilder::build(const CrystalCell& cell, const TableGrid
       std::size_t row_other = 0;
       double row_max = 0.0;
       for (std::size_t ip = 0; ip < np; ++ip) {
-        const EntryResult r = solve_entry(sliced, grid.lambda_nm[il], std::acos(grid.cos_theta[it]),
-                                          std::acos(grid.cos_phi[ip]), s.solver);
+        const double lambda = grid.lambda_nm[il], theta = std::acos(grid.cos_theta[it]), phi = std::acos(grid.cos_phi[ip]);
+        const EntryResult r = s.richardson ? solve_entry_extrapolated(half, sliced, lambda, theta, phi, s.solver)
+                                           : solve_entry(sliced, lambda, theta, phi, s.solver);
         table.at(il, it, ip) = r.jones;
         if (r.has_other_orders) ++row_other;
         row_max = std::max({row_max, r.other_orders[0], r.other_orders[1]});

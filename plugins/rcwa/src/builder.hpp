@@ -16,6 +16,7 @@ struct BuilderParams {
   int harmonics = 0;       // 0: by fidelity
   int slices_per_row = 0;  // 0: by fidelity
   bool li_rule = true;
+  bool richardson = false;  // extrapolate in slices from slices_per_row/2 and slices_per_row
   int threads = 2;
 };
 const ParamTable<BuilderParams>& builder_params();
@@ -24,6 +25,7 @@ const ParamTable<BuilderParams>& builder_params();
 struct BuildSettings {
   SolverSettings solver;
   int slices_per_row = 0;
+  bool richardson = false;
 };
 BuildSettings build_settings(const BuilderParams& p);
 

@@ -277,4 +277,13 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, 
   return r;
 }
 
+EntryResult solve_entry_extrapolated(const SlicedCell& coarse, const SlicedCell& fine, double lambda_nm, double theta,
+                                     double phi, const SolverSettings& s) {
+  const EntryResult a = solve_entry(coarse, lambda_nm, theta, phi, s);
+  EntryResult r = solve_entry(fine, lambda_nm, theta, phi, s);
+  auto x = [](Complex f, Complex c) { return (4.0 * f - c) / 3.0; };
+  r.jones = {x(r.jones.ss, a.jones.ss), x(r.jones.sp, a.jones.sp), x(r.jones.ps, a.jones.ps), x(r.jones.pp, a.jones.pp)};
+  return r;
+}
+
 }  // namespace plumage::rcwa

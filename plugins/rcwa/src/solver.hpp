@@ -34,4 +34,9 @@ struct EntryResult {
 EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta_rad, double phi_rad,
                         const SolverSettings& settings);
 
+// Richardson extrapolation in slices: the staircase error is ∝ 1/S² (NOTES.md §2), so with the
+// same cell at S and 2S slices J ≈ (4 J(2S) − J(S))/3; powers are taken from the 2S solution.
+EntryResult solve_entry_extrapolated(const SlicedCell& coarse, const SlicedCell& fine, double lambda_nm,
+                                     double theta_rad, double phi_rad, const SolverSettings& settings);
+
 }  // namespace plumage::rcwa

@@ -27,9 +27,9 @@ TEST_CASE("rcwa builder: registered with its parameter table; bad values are Con
   REQUIRE(entry);
   std::vector<std::string> names;
   for (const auto& s : entry->info.params) names.push_back(s.name);
-  CHECK(names == std::vector<std::string>{"fidelity", "harmonics", "slices_per_row", "li_rule", "threads"});
+  CHECK(names == std::vector<std::string>{"fidelity", "harmonics", "slices_per_row", "li_rule", "richardson", "threads"});
   const ConfigDocument all = ConfigDocument::parse(
-      "fidelity: preview\nharmonics: 4\nslices_per_row: 5\nli_rule: false\nthreads: 1\n", "builder.yaml");
+      "fidelity: preview\nharmonics: 4\nslices_per_row: 5\nli_rule: false\nrichardson: true\nthreads: 1\n", "builder.yaml");
   CHECK_NOTHROW(registry().create_named<TableBuilder>("rcwa", all.root(), registry().context()));
   const ConfigDocument bad = ConfigDocument::parse("harmonics: 99\n", "builder.yaml");
   CHECK_THROWS_AS(registry().create_named<TableBuilder>("rcwa", bad.root(), registry().context()), ConfigError);
