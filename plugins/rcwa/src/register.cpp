@@ -1,0 +1,47 @@
+// Entry point of libplumage_rcwa.so.
+//
+// Provides:
+//   table_builder "rcwa"    photonic-crystal reflection tables by the Fourier modal method (issue 27)
+//   accuracy_ladder "rcwa"  harmonics and slices on a crystal against the finest rung (ladder/)
+#include "builder.hpp"
+#include "rcwa_ladder.hpp"
+#include "plumage/plugin_export.hpp"
+
+namespace {
+
+using namespace plumage;
+using namespace plumage::rcwa;
+
+class RcwaLadder final : public AccuracyLadder {
+ public:
+  explicit RcwaLadder(std::string crystal) : crystal_(std::move(crystal)) {}
+  std::vector<LadderPoint> run(const Options& options) const override { return run_rcwa_ladder(options, crystal_); }
+
+ private:
+  std::string crystal_;
+};
+
+void register_rcwa(Registrar& registrar) {
+  registrar.add<TableBuilder>(
+      {.type = "rcwa",
+       .version = kPluginVersion,
+       .summary = "photonic-crystal reflection tables by the Fourier modal method (RCWA): staircase slices, "
+                  "conical incidence, Li's inverse rule, Redheffer S-matrices; Jones (s, p) per (lambda, theta, phi)",
+       .params = builder_params().specs()},
+      [](const ParamView& params, const PluginContext&) {
+        return std::make_unique<RcwaTableBuilder>(builder_params().read(params));
+      });
+  registrar.add<AccuracyLadder>(
+      {.type = "rcwa",
+       .version = kPluginVersion,
+       .summary = "accuracy ladder: (harmonics, slices) from (2, 3) to (7, 24) on a crystal against the finest "
+                  "rung (10, 48)",
+       .params = ladder_params().specs()},
+      [](const ParamView& params, const PluginContext&) {
+        return std::make_unique<RcwaLadder>(ladder_params().read(params).crystal);
+      });
+}
+
+}  // namespace
+
+PLUMAGE_PLUGIN(register_rcwa)
