@@ -373,13 +373,17 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
   if (lossless) layout.push_back({kPatternBins, 4, 4, nullptr});
   radiator.radiate_all(std::span<const std::vector<double>>(chi.data(), n_phi),
                        std::span<const Eigen::MatrixXcd>(amplitudes.data(), n_phi), layout, radiated);
+  // sin φ_o, cos φ_o once per solve, not per azimuth and polarization (issue 26).
+  thread_local std::vector<double> sin_o, cos_o;
+  sin_o.resize(n_dir), cos_o.resize(n_dir);
+  for (std::size_t j = 0; j < n_dir; ++j) sin_o[j] = std::sin(phi_o_rad[j]), cos_o[j] = std::cos(phi_o_rad[j]);
   for (std::size_t a = 0; a < n_phi; ++a) {
     FarField& ff = out[a];
     const Eigen::MatrixXcd& main_out = radiated[a * layout.size()];
     for (int p = 0; p < 2; ++p) {
       ff.field[p].resize(n_dir);
       for (std::size_t j = 0; j < n_dir; ++j) {
-        const double sj = std::sin(phi_o_rad[j]), cj = std::cos(phi_o_rad[j]);
+        const double sj = sin_o[j], cj = cos_o[j];
         const Complex o1 = prefactor * main_out(static_cast<Eigen::Index>(j), 2 * p);
         const Complex o2 = prefactor * main_out(static_cast<Eigen::Index>(j), 2 * p + 1);
         ff.field[p][j] = {o1 * cj + o2 * (st * sj), o2 * ct, -o1 * sj + o2 * (st * cj)};

@@ -310,7 +310,8 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
   p.rows.resize(sets);
   p.accumulated.resize(sets);
   for (std::size_t s = 0; s < sets; ++s) {
-    p.rows[s].assign(samples * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs), 0.0);
+    // Every entry of rows is written for each chunk before it is read: no clearing.
+    p.rows[s].resize(samples * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs));
     p.accumulated[s].assign(layout[s].phi_o_rad.size() * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs), 0.0);
   }
   const auto P = static_cast<Eigen::Index>(samples);
