@@ -269,6 +269,27 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
   return bytes;
 }
 
+namespace {
+// accumulated[s] ([direction][azimuth][output] (re, im)) → results[a · sets + s].
+void copy_results(const std::vector<std::vector<double>>& accumulated, std::span<const RadiationTargets> layout,
+                  std::size_t n_phi, std::vector<Eigen::MatrixXcd>& results) {
+  const std::size_t sets = layout.size();
+  for (std::size_t a = 0; a < n_phi; ++a) {
+    for (std::size_t s = 0; s < sets; ++s) {
+      const std::size_t n_dir = layout[s].phi_o_rad.size(), outputs = static_cast<std::size_t>(layout[s].outputs);
+      Eigen::MatrixXcd& r = results[a * sets + s];
+      r.resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(outputs));
+      for (std::size_t j = 0; j < n_dir; ++j) {
+        const double* v = accumulated[s].data() + 2 * ((j * n_phi + a) * outputs);
+        for (std::size_t q = 0; q < outputs; ++q) {
+          r(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(q)) = Complex(v[2 * q], v[2 * q + 1]);
+        }
+      }
+    }
+  }
+}
+}  // namespace
+
 Radiator::~Radiator() {
   if (plan_) spare_plan = std::move(plan_);
 }
@@ -382,19 +403,7 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
       }
     }
   }
-  for (std::size_t a = 0; a < n_phi; ++a) {
-    for (std::size_t s = 0; s < sets; ++s) {
-      const std::size_t n_dir = layout[s].phi_o_rad.size(), outputs = static_cast<std::size_t>(layout[s].outputs);
-      Eigen::MatrixXcd& r = results[a * sets + s];
-      r.resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(outputs));
-      for (std::size_t j = 0; j < n_dir; ++j) {
-        const double* v = p.accumulated[s].data() + 2 * ((j * n_phi + a) * outputs);
-        for (std::size_t q = 0; q < outputs; ++q) {
-          r(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(q)) = Complex(v[2 * q], v[2 * q + 1]);
-        }
-      }
-    }
-  }
+  copy_results(p.accumulated, layout, n_phi, results);
 }
 
 }  // namespace plumage::detail
