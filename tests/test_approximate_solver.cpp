@@ -10,6 +10,7 @@
 #include "plumage/plugin_registry.hpp"
 #include "solver/approximate_solver.hpp"
 #include "solver/tent_integrals.hpp"
+#include "solver/tent_kernel.hpp"
 
 using namespace plumage;
 
@@ -269,6 +270,50 @@ TEST_CASE("tent x plane-wave weights: series, closed form and quadrature agree",
       CHECK(std::abs(b - qb) < 1e-12);
     }
   }
+}
+
+// Issue 26: the far field's kernel takes A(u) = e^{iu} conj(B(u)) from B alone (tent_kernel.cpp).
+// Against a Simpson quadrature of every node's tent integral ∫ Λ_m e^{i(χ + g)} dl along a
+// polyline of short (series) and long (closed form: |u| up to ~4) segments.
+TEST_CASE("factored tent kernel equals a quadrature of the tent integrals (series and closed form)", "[solver]") {
+  const std::vector<Vec2> v = {{0, 0}, {12, 3}, {160, -40}, {175, -38}, {330, 20}, {345, 25}, {500, -60}, {520, -50}};
+  const double k0 = 2 * kPi / 400.0, gamma0 = 0.9 * k0;
+  const Vec2 origin{250, 0};
+  std::vector<double> h, chi;
+  for (std::size_t k = 0; k + 1 < v.size(); ++k) h.push_back(norm(v[k + 1] - v[k]));
+  for (const Vec2& p : v) chi.push_back(-k0 * (0.3 * p.x + 0.8 * p.z));  // an incident phase, linear in ρ
+  const std::vector<double> phi = {-1.5, -0.9, -0.2, 0.0, 0.4, 1.1, 1.55};
+  detail::OutgoingPhases outgoing;
+  outgoing.build(v, origin, gamma0, phi);
+  detail::FactoredTentKernel kernel;
+  Eigen::MatrixXd split;
+  kernel.build(outgoing, h, chi, split);
+  const auto P = static_cast<Eigen::Index>(phi.size());
+  REQUIRE(split.rows() == 2 * P);
+  REQUIRE(split.cols() == static_cast<Eigen::Index>(v.size() - 2));
+  double largest_u = 0.0;
+  for (std::size_t j = 0; j < phi.size(); ++j) {
+    const double sx = std::sin(phi[j]), sz = std::cos(phi[j]);
+    auto psi = [&](Vec2 p, double c) { return c - gamma0 * (sx * (p.x - origin.x) + sz * (p.z - origin.z)); };
+    for (std::size_t m = 1; m + 1 < v.size(); ++m) {
+      Complex q{0, 0};
+      const int n = 4000;
+      for (const std::size_t k : {m - 1, m}) {  // segments k = (v_k, v_k+1) around node m
+        const double u = psi(v[k + 1], chi[k + 1]) - psi(v[k], chi[k]);
+        largest_u = std::max(largest_u, std::abs(u));
+        for (int i = 0; i <= n; ++i) {
+          const double t = static_cast<double>(i) / n, w = (i == 0 || i == n) ? 1 : (i % 2 ? 4 : 2);
+          const double tent = k == m ? 1 - t : t;  // Λ_m along the segment
+          q += w * h[k] / (3.0 * n) * tent * std::polar(1.0, psi(v[k], chi[k]) + u * t);
+        }
+      }
+      const Complex got(split(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(m - 1)),
+                        split(P + static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(m - 1)));
+      INFO("phi " << phi[j] << " node " << m);
+      CHECK(std::abs(got - q) < 1e-9 * (h[m - 1] + h[m]));
+    }
+  }
+  CHECK(largest_u > 2.0);  // the closed form was exercised
 }
 
 // Issue 23 (memory budgets): the solver's estimate of one solve counts its buffers, and grows with

@@ -15,6 +15,7 @@ void register_fit_ladder(PluginRegistry& registry);            // fit/fit_ladder
 void register_geometry_benchmark(PluginRegistry& registry);    // geometry/geometry_benchmark.cpp
 void register_ladder_benchmark(PluginRegistry& registry);      // report/ladder_benchmark.cpp
 void register_bsdf_benchmark(PluginRegistry& registry);        // bsdf/bsdf_benchmark.cpp
+void register_characterize_benchmark(PluginRegistry& registry); // pipeline/characterize_benchmark.cpp
 
 void register_builtin_plugins(PluginRegistry& registry) {
   register_validation_shape(registry);
@@ -28,6 +29,7 @@ void register_builtin_plugins(PluginRegistry& registry) {
   register_geometry_benchmark(registry);
   register_ladder_benchmark(registry);
   register_bsdf_benchmark(registry);
+  register_characterize_benchmark(registry);
 }
 
 }  // namespace plumage

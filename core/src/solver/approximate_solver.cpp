@@ -89,21 +89,16 @@ Complex far_field_prefactor(double k0, double gamma0) {
   return (k0 / 4.0) * std::sqrt(2.0 / (kPi * gamma0)) * std::polar(1.0, -kPi / 4);
 }
 
-// Current amplitudes at every node for one incident direction, both polarizations: columns
-// [pol][J̃x J̃y J̃z Mx My Mz] with J̃ = η0 J = n̂ × η0 H and M = −n̂ × E (Eq. 2), times the window
-// and the regularity, without the incident phase e^{i k_i·ρ} (the kernel carries it). Also the
-// incident power Φ_i (Eq. 9).
-// With `lossless`, the reflected wave at every node keeps its polarization and phase but carries
-// all the incident power (|a_s|² + |a_p|² = |E_i·ŝ|² + |η0H_i·ŝ|²), without the regularity
-// factor: the reference of the `lossless` normalisation. Where nothing is reflected (a
-// polarization at its Brewster angle) it falls back to a perfect conductor (a_s = −E_i·ŝ,
-// a_p = η0H_i·ŝ).
 // The Eq. 2 currents (J̃ = n̂ × η0H, M = −n̂ × E; incident phase factored out) of both
-// polarizations at a surface point with normal n̂ and local reflection r; false if the point
-// faces away from the light (within kGrazingCutoff of grazing or beyond).
+// polarizations at a surface point with normal n̂ and local reflection r, into out[0]; with
+// `with_lossless` also those of the lossless reference (fill_amplitudes) into out[1], from the
+// same local basis (issue 26: one pass instead of two over the nodes). False if the point faces
+// away from the light (within kGrazingCutoff of grazing or beyond).
+using PointCurrents = std::array<std::array<Complex, 6>, 2>;  // [pol][J̃x J̃y J̃z Mx My Mz]
+
 bool point_currents(const Vec2& normal, const Vec3& w_i, const JonesReflection& r,
-                    const PlaneWavePolarization (&pol)[2], bool with_incident, bool lossless,
-                    std::array<std::array<Complex, 6>, 2>& out) {
+                    const PlaneWavePolarization (&pol)[2], bool with_incident, bool with_lossless,
+                    PointCurrents (&out)[2]) {
   const Vec3 n{normal.x, 0.0, normal.z};
   const double cos_a = dot3(w_i, n);
   if (cos_a <= std::sin(kGrazingCutoff)) return false;
@@ -114,33 +109,36 @@ bool point_currents(const Vec2& normal, const Vec3& w_i, const JonesReflection& 
   s_hat = s_len < 1e-4 ? Vec3{0.0, 1.0, 0.0} : Vec3{s_hat[0] / s_len, s_hat[1] / s_len, s_hat[2] / s_len};
   const Vec3 w_r{2 * cos_a * n[0] - w_i[0], 2 * cos_a * n[1] - w_i[1], 2 * cos_a * n[2] - w_i[2]};
   const Vec3 r_hat = cross3(w_r, s_hat);
+  const int variants = with_lossless ? 2 : 1;
   for (int p = 0; p < 2; ++p) {
     const Vec3& e = pol[p].e;
     const Vec3& h = pol[p].eta0_h;
     const double c_e = dot3(e, s_hat), c_h = dot3(h, s_hat);
-    Complex a_s = r.ss * c_e + r.sp * c_h;
-    Complex a_p = r.ps * c_e + r.pp * c_h;
-    if (lossless) {
-      const double in = c_e * c_e + c_h * c_h, reflected = std::norm(a_s) + std::norm(a_p);
-      if (reflected > 1e-24 * in) {
-        const double scale = std::sqrt(in / reflected);
-        a_s *= scale, a_p *= scale;
-      } else {
-        a_s = -c_e, a_p = c_h;
+    for (int v = 0; v < variants; ++v) {
+      Complex a_s = r.ss * c_e + r.sp * c_h;
+      Complex a_p = r.ps * c_e + r.pp * c_h;
+      if (v == 1) {  // lossless: all the incident power, phase and polarization kept
+        const double in = c_e * c_e + c_h * c_h, reflected = std::norm(a_s) + std::norm(a_p);
+        if (reflected > 1e-24 * in) {
+          const double scale = std::sqrt(in / reflected);
+          a_s *= scale, a_p *= scale;
+        } else {
+          a_s = -c_e, a_p = c_h;
+        }
       }
-    }
-    CVec3 e_tot, h_tot;  // E and η0 H at the point, incident phase factored out
-    for (int c = 0; c < 3; ++c) {
-      e_tot[c] = a_s * s_hat[c] - a_p * r_hat[c];
-      h_tot[c] = a_s * r_hat[c] + a_p * s_hat[c];
-      if (with_incident) {
-        e_tot[c] += e[c];
-        h_tot[c] += h[c];
+      CVec3 e_tot, h_tot;  // E and η0 H at the point, incident phase factored out
+      for (int c = 0; c < 3; ++c) {
+        e_tot[c] = a_s * s_hat[c] - a_p * r_hat[c];
+        h_tot[c] = a_s * r_hat[c] + a_p * s_hat[c];
+        if (with_incident) {
+          e_tot[c] += e[c];
+          h_tot[c] += h[c];
+        }
       }
+      const CVec3 j = cross3(n, h_tot);
+      const CVec3 ne = cross3(n, e_tot);
+      for (int c = 0; c < 3; ++c) out[v][p][c] = j[c], out[v][p][3 + c] = -ne[c];
     }
-    const CVec3 j = cross3(n, h_tot);
-    const CVec3 ne = cross3(n, e_tot);
-    for (int c = 0; c < 3; ++c) out[p][c] = j[c], out[p][3 + c] = -ne[c];
   }
   return true;
 }
@@ -152,20 +150,22 @@ bool point_currents(const Vec2& normal, const Vec3& w_i, const JonesReflection& 
 // the tent-weighted mean of its lit sub-samples' currents (each with its own normal and basis —
 // Jones matrices in different local bases cannot be averaged).
 //
-// With `lossless`, the reflected wave at every point keeps its polarization and phase but
-// carries all the incident power (|a_s|² + |a_p|² = |E_i·ŝ|² + |η0H_i·ŝ|²), without the
-// regularity factor: the reference of the `lossless` normalisation. Where nothing is reflected
-// (a polarization at its Brewster angle) it falls back to a perfect conductor (a_s = −E_i·ŝ,
-// a_p = η0H_i·ŝ).
+// With 24 columns, columns 12–23 receive the lossless reference: the reflected wave at every
+// point keeps its polarization and phase but carries all the incident power (|a_s|² + |a_p|² =
+// |E_i·ŝ|² + |η0H_i·ŝ|²), without the regularity factor: the reference of the `lossless`
+// normalisation. Where nothing is reflected (a polarization at its Brewster angle) it falls back
+// to a perfect conductor (a_s = −E_i·ŝ, a_p = η0H_i·ŝ).
 void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, const Vec3& w_i,
-                     std::span<const JonesReflection> jones, bool with_incident, bool lossless,
+                     std::span<const JonesReflection> jones, bool with_incident,
                      Eigen::Ref<Eigen::MatrixXcd> amplitudes, std::array<double, 2>& incident_power) {
   const PlaneWavePolarization pol[2] = {incident_polarization(0, incident),
                                         incident_polarization(1, incident)};
+  const bool with_lossless = amplitudes.cols() == 24;
+  const int variants = with_lossless ? 2 : 1;
   amplitudes.setZero();
   incident_power = {0.0, 0.0};
   const auto k = static_cast<std::size_t>(top.samples);
-  std::array<std::array<Complex, 6>, 2> point{};
+  PointCurrents point[2]{};
   for (std::size_t m = 0; m < top.normals.size(); ++m) {
     const Vec3 n{top.normals[m].x, 0.0, top.normals[m].z};
     const double cos_a = dot3(w_i, n);
@@ -175,30 +175,36 @@ void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, 
       incident_power[0] += flux;
       incident_power[1] += flux;
     }
-    std::array<std::array<Complex, 6>, 2> sum{};
+    PointCurrents sum[2]{};
     double weights = 0.0;
     if (k == 1) {
-      if (point_currents(top.normals[m], w_i, jones[m], pol, with_incident, lossless, point)) sum = point, weights = 1.0;
+      if (point_currents(top.normals[m], w_i, jones[m], pol, with_incident, with_lossless, point)) {
+        sum[0] = point[0], sum[1] = point[1], weights = 1.0;
+      }
     } else {
       // Node m is fine vertex (m + 1)K; its support spans fine vertices mK … (m + 2)K, i.e.
       // sub-sample indices mK − 1 … (m + 2)K − 1, the two ends with weight 0.
       for (std::size_t q = 1; q < 2 * k; ++q) {
         const std::size_t f = m * k + q - 1;
-        if (!point_currents(top.sample_normals[f], w_i, jones[f], pol, with_incident, lossless, point)) continue;
+        if (!point_currents(top.sample_normals[f], w_i, jones[f], pol, with_incident, with_lossless, point)) continue;
         // Trapezoid rule of ∫ Λ_m J dl: tent value times the sub-segment length of its side.
         const double w = static_cast<double>(q <= k ? q : 2 * k - q) *
                          (q <= k ? top.segment_length[m] : top.segment_length[m + 1]);
-        for (int p = 0; p < 2; ++p) {
-          for (int c = 0; c < 6; ++c) sum[p][c] += w * point[p][c];
+        for (int v = 0; v < variants; ++v) {
+          for (int p = 0; p < 2; ++p) {
+            for (int c = 0; c < 6; ++c) sum[v][p][c] += w * point[v][p][c];
+          }
         }
         weights += w;
       }
     }
     if (!(weights > 0.0)) continue;
-    const double weight = top.window[m] * (lossless ? 1.0 : top.regularity[m]) / weights;
     const auto row = static_cast<Eigen::Index>(m);
-    for (int p = 0; p < 2; ++p) {
-      for (int c = 0; c < 6; ++c) amplitudes(row, 6 * p + c) = weight * sum[p][c];
+    for (int v = 0; v < variants; ++v) {
+      const double weight = top.window[m] * (v == 1 ? 1.0 : top.regularity[m]) / weights;
+      for (int p = 0; p < 2; ++p) {
+        for (int c = 0; c < 6; ++c) amplitudes(row, 12 * v + 6 * p + c) = weight * sum[v][p][c];
+      }
     }
   }
 }
@@ -355,13 +361,9 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
     ff.lambda_nm = lambda_nm;
     ff.incident = incident;
     ff.phi_o_rad.assign(phi_o_rad.begin(), phi_o_rad.end());
+    // The currents and, with `lossless`, the lossless reference's in one pass (columns 12–23).
     fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * points, points),
-                    with_incident, false, amplitudes[a].leftCols(12), ff.incident_power);
-    std::array<double, 2> unused{};
-    if (lossless) {
-      fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * points, points),
-                      with_incident, true, amplitudes[a].rightCols(12), unused);
-    }
+                    with_incident, amplitudes[a], ff.incident_power);
     // Incident phase k_i·ρ = −k0 ω_i·ρ at every vertex; the kernel integrates it exactly.
     for (std::size_t k = 0; k < verts; ++k) {
       chi[a][k] = -k0 * ct * (sp * top.vertices[k].x + cp * top.vertices[k].z);
@@ -371,13 +373,17 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
   if (lossless) layout.push_back({kPatternBins, 4, 4, nullptr});
   radiator.radiate_all(std::span<const std::vector<double>>(chi.data(), n_phi),
                        std::span<const Eigen::MatrixXcd>(amplitudes.data(), n_phi), layout, radiated);
+  // sin φ_o, cos φ_o once per solve, not per azimuth and polarization (issue 26).
+  thread_local std::vector<double> sin_o, cos_o;
+  sin_o.resize(n_dir), cos_o.resize(n_dir);
+  for (std::size_t j = 0; j < n_dir; ++j) sin_o[j] = std::sin(phi_o_rad[j]), cos_o[j] = std::cos(phi_o_rad[j]);
   for (std::size_t a = 0; a < n_phi; ++a) {
     FarField& ff = out[a];
     const Eigen::MatrixXcd& main_out = radiated[a * layout.size()];
     for (int p = 0; p < 2; ++p) {
       ff.field[p].resize(n_dir);
       for (std::size_t j = 0; j < n_dir; ++j) {
-        const double sj = std::sin(phi_o_rad[j]), cj = std::cos(phi_o_rad[j]);
+        const double sj = sin_o[j], cj = cos_o[j];
         const Complex o1 = prefactor * main_out(static_cast<Eigen::Index>(j), 2 * p);
         const Complex o2 = prefactor * main_out(static_cast<Eigen::Index>(j), 2 * p + 1);
         ff.field[p][j] = {o1 * cj + o2 * (st * sj), o2 * ct, -o1 * sj + o2 * (st * cj)};
@@ -415,7 +421,7 @@ ApproximateSolver::NodeCurrents ApproximateSolver::currents(const Prepared& prep
   Eigen::MatrixXcd amplitudes(static_cast<Eigen::Index>(nodes), 12);
   NodeCurrents out;
   fill_amplitudes(top, incident, {ct * sp, std::sin(incident.theta_rad), ct * cp}, jones,
-                  currents_ == Currents::incident_and_reflected, false, amplitudes, out.incident_power);
+                  currents_ == Currents::incident_and_reflected, amplitudes, out.incident_power);
   for (std::size_t m = 0; m < nodes; ++m) {
     const Vec2 v = top.vertices[m + 1];
     out.position.push_back(v);

@@ -47,6 +47,12 @@ class ApproximateSolver final : public ScatteringSolver {
       : currents_(currents), window_fraction_(window_fraction), normalisation_(normalisation),
         chunking_(chunking), reflection_samples_(reflection_samples) {}
 
+  // The same solver with another far-field evaluation (benchmarks, accuracy studies).
+  ApproximateSolver with_chunking(const detail::ChunkingOptions& chunking) const {
+    return ApproximateSolver(currents_, window_fraction_, normalisation_, chunking, reflection_samples_);
+  }
+  const detail::ChunkingOptions& chunking() const { return chunking_; }
+
   std::shared_ptr<const Prepared> prepare(
       const CrossSection& section, std::shared_ptr<const LocalReflection> reflection) const override;
 

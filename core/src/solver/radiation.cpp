@@ -60,23 +60,27 @@ void radiate_exact(std::span<const Vec2> vertices, std::span<const double> segme
   }
 }
 
-// 6-point Lagrange stencil on the uniform grid φ_p = lo + p·step.
+// N-point Lagrange stencil on the uniform grid φ_p = lo + p·step (N even: the target between
+// the stencil's two middle points).
 struct Stencil {
+  int points = 6;
   std::vector<Eigen::Index> first;
-  std::vector<std::array<double, 6>> weight;
+  std::vector<std::array<double, kMaxStencilPoints>> weight;
   std::vector<double> sin_phi, cos_phi;
 };
 
-Stencil make_stencil(std::span<const double> phi_o_rad, double lo, double step) {
+Stencil make_stencil(std::span<const double> phi_o_rad, double lo, double step, int points) {
   Stencil s;
+  s.points = points;
+  const int half = points / 2;
   for (const double phi : phi_o_rad) {
     const double t = (phi - lo) / step;
-    const double base = std::floor(t) - 2.0;
-    const double f = t - base;  // in [2, 3): position among nodes 0…5
-    std::array<double, 6> w{};
-    for (int a = 0; a < 6; ++a) {
+    const double base = std::floor(t) - (half - 1);
+    const double f = t - base;  // in [half − 1, half): position among nodes 0 … points − 1
+    std::array<double, kMaxStencilPoints> w{};
+    for (int a = 0; a < points; ++a) {
       double num = 1.0, den = 1.0;
-      for (int b = 0; b < 6; ++b) {
+      for (int b = 0; b < points; ++b) {
         if (b == a) continue;
         num *= f - b;
         den *= a - b;
@@ -140,14 +144,15 @@ ChunkLayout chunk_layout(std::span<const Vec2> vertices, std::span<const double>
     layout.max_count = std::max(layout.max_count, c.count);
   }
   // A whole number of steps across (−π/2, π/2), so that the grid is symmetric about 0 and a
-  // mirrored barbule sees the mirrored grid.
+  // mirrored barbule sees the mirrored grid; half a stencil of padding beyond each end.
   const double intervals = std::ceil(options.oversampling * band);
+  const double pad = 0.5 * options.stencil_points;
   layout.step = kPi / intervals;
-  layout.lo = -0.5 * kPi - 3.0 * layout.step;
-  layout.samples = static_cast<std::size_t>(intervals) + 7;
+  layout.lo = -0.5 * kPi - pad * layout.step;
+  layout.samples = static_cast<std::size_t>(intervals) + static_cast<std::size_t>(options.stencil_points) + 1;
   layout.grid.resize(layout.samples);
   for (std::size_t p = 0; p < layout.samples; ++p) {
-    layout.grid[p] = layout.step * (static_cast<double>(p) - 3.0 - 0.5 * intervals);
+    layout.grid[p] = layout.step * (static_cast<double>(p) - pad - 0.5 * intervals);
   }
   return layout;
 }
@@ -200,7 +205,10 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
   p.layout = chunk_layout(vertices, segment_length, gamma0, options);
   const std::size_t sets = p.target_phi.size(), chunks = p.layout.chunks.size();
   p.stencils.resize(sets);
-  for (std::size_t s = 0; s < sets; ++s) p.stencils[s] = make_stencil(p.target_phi[s], p.layout.lo, p.layout.step);
+  if (options.stencil_points < 4 || options.stencil_points > kMaxStencilPoints || options.stencil_points % 2 != 0)
+    throw Error("radiate: stencil_points must be even, in [4, " + std::to_string(kMaxStencilPoints) + "]");
+  for (std::size_t s = 0; s < sets; ++s)
+    p.stencils[s] = make_stencil(p.target_phi[s], p.layout.lo, p.layout.step, options.stencil_points);
   const double st = std::sin(theta_i_rad), ct = std::cos(theta_i_rad);
   p.e1.clear(), p.e2.clear();
   for (const double phi : p.layout.grid) {
@@ -261,6 +269,27 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
   return bytes;
 }
 
+namespace {
+// accumulated[s] ([direction][azimuth][output] (re, im)) → results[a · sets + s].
+void copy_results(const std::vector<std::vector<double>>& accumulated, std::span<const RadiationTargets> layout,
+                  std::size_t n_phi, std::vector<Eigen::MatrixXcd>& results) {
+  const std::size_t sets = layout.size();
+  for (std::size_t a = 0; a < n_phi; ++a) {
+    for (std::size_t s = 0; s < sets; ++s) {
+      const std::size_t n_dir = layout[s].phi_o_rad.size(), outputs = static_cast<std::size_t>(layout[s].outputs);
+      Eigen::MatrixXcd& r = results[a * sets + s];
+      r.resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(outputs));
+      for (std::size_t j = 0; j < n_dir; ++j) {
+        const double* v = accumulated[s].data() + 2 * ((j * n_phi + a) * outputs);
+        for (std::size_t q = 0; q < outputs; ++q) {
+          r(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(q)) = Complex(v[2 * q], v[2 * q + 1]);
+        }
+      }
+    }
+  }
+}
+}  // namespace
+
 Radiator::~Radiator() {
   if (plan_) spare_plan = std::move(plan_);
 }
@@ -302,7 +331,8 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
   p.rows.resize(sets);
   p.accumulated.resize(sets);
   for (std::size_t s = 0; s < sets; ++s) {
-    p.rows[s].assign(samples * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs), 0.0);
+    // Every entry of rows is written for each chunk before it is read: no clearing.
+    p.rows[s].resize(samples * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs));
     p.accumulated[s].assign(layout[s].phi_o_rad.size() * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs), 0.0);
   }
   const auto P = static_cast<Eigen::Index>(samples);
@@ -358,7 +388,7 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
         const double* y = p.rows[s].data() + static_cast<std::size_t>(st.first[j]) * width;
         const auto& w = st.weight[j];
         for (std::size_t k = 0; k < width; ++k) acc[k] = 0.0;
-        for (int a = 0; a < 6; ++a) {
+        for (int a = 0; a < st.points; ++a) {
           const double* ya = y + static_cast<std::size_t>(a) * width;
           const double wa = w[a];
           for (std::size_t k = 0; k < width; ++k) acc[k] += wa * ya[k];
@@ -373,19 +403,7 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
       }
     }
   }
-  for (std::size_t a = 0; a < n_phi; ++a) {
-    for (std::size_t s = 0; s < sets; ++s) {
-      const std::size_t n_dir = layout[s].phi_o_rad.size(), outputs = static_cast<std::size_t>(layout[s].outputs);
-      Eigen::MatrixXcd& r = results[a * sets + s];
-      r.resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(outputs));
-      for (std::size_t j = 0; j < n_dir; ++j) {
-        const double* v = p.accumulated[s].data() + 2 * ((j * n_phi + a) * outputs);
-        for (std::size_t q = 0; q < outputs; ++q) {
-          r(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(q)) = Complex(v[2 * q], v[2 * q + 1]);
-        }
-      }
-    }
-  }
+  copy_results(p.accumulated, layout, n_phi, results);
 }
 
 }  // namespace plumage::detail

@@ -15,8 +15,8 @@
 //             far field F_c(φ) is band-limited in φ: by the Jacobi–Anger expansion it has no
 //             Fourier component e^{inφ} above |n| ≈ γ0 R_c (R_c its radius) beyond a decay
 //             margin. It is sampled exactly on a uniform grid over (−π/2, π/2) at a few times
-//             that rate, interpolated to the requested directions with 6-point Lagrange
-//             weights, and multiplied back by e^{−iγ0 ρ̂·r_c}. Cost ∝ nodes × (samples per
+//             that rate (ChunkingOptions: 1.6), interpolated to the requested directions with
+//             N-point Lagrange weights (10), and multiplied back by e^{−iγ0 ρ̂·r_c}. Cost ∝ nodes × (samples per
 //             chunk) + chunks × directions, about an order of magnitude below the exact sum for
 //             a 40 µm barbule; agreement with it is measured in the tests (≤ 1e-5 relative L2).
 #pragma once

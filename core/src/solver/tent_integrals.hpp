@@ -40,6 +40,14 @@ inline void tent_weights_series(simd::v4d u, simd::v4d& a_re, simd::v4d& a_im, s
   b_im = u * horner(k_bi, u2);
 }
 
+// B alone: A follows from it by the mirror identity A(u) = e^{iu}·conj(B(u)) (substitute
+// t → 1 − t; u real), which FactoredTentKernel uses to evaluate one series instead of two.
+inline void tent_weight_b_series(simd::v4d u, simd::v4d& b_re, simd::v4d& b_im) {
+  const simd::v4d u2 = u * u;
+  b_re = horner(k_br, u2);
+  b_im = u * horner(k_bi, u2);
+}
+
 // Closed form for any u (used where |u| > kTaylorRange): E0 = (z − 1)/(iu),
 // B = z/(iu) + (z − 1)/u², A = E0 − B with z = e^{iu}.
 inline void tent_weights_closed(double u, std::complex<double>& a, std::complex<double>& b) {

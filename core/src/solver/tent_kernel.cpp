@@ -46,22 +46,22 @@ namespace {
 
 // The vector loops of FactoredTentKernel::build, as functions with restrict parameters (GCC 12
 // does not vectorise them with restrict-qualified locals inside the segment loop).
-// e = h·e^{iχ}·e^{ig}
-void phase_product(double h, double c, double s, const double* __restrict gr, const double* __restrict gi,
-                   double* __restrict er, double* __restrict ei, std::size_t n) {
+// e = e^{iχ}·e^{ig}
+void unit_phase(double c, double s, const double* __restrict gr, const double* __restrict gi, double* __restrict er,
+                double* __restrict ei, std::size_t n) {
   for (std::size_t j = 0; j < n; ++j) {
-    er[j] = h * (c * gr[j] - s * gi[j]);
-    ei[j] = h * (c * gi[j] + s * gr[j]);
+    er[j] = c * gr[j] - s * gi[j];
+    ei[j] = c * gi[j] + s * gr[j];
   }
 }
 
-// out = add + e·w (complex, split)
-void multiply_add(const double* __restrict add_re, const double* __restrict add_im, const double* __restrict er,
-                  const double* __restrict ei, const double* __restrict wr, const double* __restrict wi,
-                  double* __restrict out_re, double* __restrict out_im, std::size_t n) {
+// out = add + e·conj(w) (complex, split)
+void multiply_conj_add(const double* __restrict add_re, const double* __restrict add_im, const double* __restrict er,
+                       const double* __restrict ei, const double* __restrict wr, const double* __restrict wi,
+                       double* __restrict out_re, double* __restrict out_im, std::size_t n) {
   for (std::size_t j = 0; j < n; ++j) {
-    out_re[j] = add_re[j] + (er[j] * wr[j] - ei[j] * wi[j]);
-    out_im[j] = add_im[j] + (er[j] * wi[j] + ei[j] * wr[j]);
+    out_re[j] = add_re[j] + (er[j] * wr[j] + ei[j] * wi[j]);
+    out_im[j] = add_im[j] + (ei[j] * wr[j] - er[j] * wi[j]);
   }
 }
 
@@ -76,6 +76,11 @@ void multiply(const double* __restrict er, const double* __restrict ei, const do
 
 }  // namespace
 
+// Segment k (vertices k, k + 1, length h, phase increment u) adds h·e^{iψ_k}·A(u) to node k and
+// h·e^{iψ_k}·B(u) to node k + 1 (tent_integrals.hpp). With A(u) = e^{iu}·conj(B(u)) and
+// e^{iψ_k}·e^{iu} = e^{iψ_{k+1}} (ψ is linear along the segment), node k's part is
+// e^{iψ_{k+1}}·conj(h·B(u)): one series per entry instead of two (issue 26; the identity is
+// exact, the two phases agree to rounding, ~|ψ|·1e-16).
 void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
                                std::span<const double> chi, Eigen::MatrixXd& split) {
   const std::size_t verts = outgoing.verts, segs = verts - 1, nodes = verts - 2;
@@ -91,23 +96,23 @@ void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const d
     std::memcpy(in_re_.data() + k, &cs, sizeof cs);
     std::memcpy(in_im_.data() + k, &sn, sizeof sn);
   }
-  double* ar = ar_.data();
-  double* ai = ai_.data();
   double* br = br_.data();
   double* bi = bi_.data();
-  double* er = er_.data();
-  double* ei = ei_.data();
+  double* cur_re = er_.data();  // e^{iψ_k}
+  double* cur_im = ei_.data();
+  double* nxt_re = ar_.data();  // e^{iψ_{k+1}}
+  double* nxt_im = ai_.data();
   double* cr = carry_re_.data();
   double* ci = carry_im_.data();
   double* nr = node_re_.data();
   double* ni = node_im_.data();
-  // Segment k (vertices k, k + 1, length h) adds h·e^{iψ_k}·A(u_k) to node k and h·e^{iψ_k}·B(u_k)
-  // to node k + 1 (node m is vertex m, column m − 1). Padding lanes (j ≥ P) compute harmless values.
+  unit_phase(in_re_[0], in_im_[0], outgoing.re.data(), outgoing.im.data(), cur_re, cur_im, n);
+  // Padding lanes (j ≥ P) compute harmless values.
   for (std::size_t k = 0; k < segs; ++k) {
-    const double dchi = chi[k + 1] - chi[k];
-    const double* gr = outgoing.re.data() + k * n;
-    const double* gi = outgoing.im.data() + k * n;
+    const double dchi = chi[k + 1] - chi[k], h = segment_length[k];
     const double* dg = outgoing.dg.data() + k * n;
+    unit_phase(in_re_[k + 1], in_im_[k + 1], outgoing.re.data() + (k + 1) * n, outgoing.im.data() + (k + 1) * n,
+               nxt_re, nxt_im, n);
     simd::v4d largest = simd::splat(0.0);
     for (std::size_t j = 0; j < n; j += 4) {
       simd::v4d u;
@@ -115,10 +120,10 @@ void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const d
       u += dchi;
       const simd::v4d magnitude = u < 0.0 ? -u : u;
       largest = magnitude > largest ? magnitude : largest;
-      simd::v4d a_re, a_im, b_re, b_im;
-      tent_weights_series(u, a_re, a_im, b_re, b_im);
-      std::memcpy(ar + j, &a_re, sizeof a_re);
-      std::memcpy(ai + j, &a_im, sizeof a_im);
+      simd::v4d b_re, b_im;
+      tent_weight_b_series(u, b_re, b_im);
+      b_re *= h;
+      b_im *= h;
       std::memcpy(br + j, &b_re, sizeof b_re);
       std::memcpy(bi + j, &b_im, sizeof b_im);
     }
@@ -129,18 +134,19 @@ void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const d
         if (std::abs(u) <= kTaylorRange) continue;
         std::complex<double> a, b;
         tent_weights_closed(u, a, b);
-        ar[j] = a.real(), ai[j] = a.imag(), br[j] = b.real(), bi[j] = b.imag();
+        br[j] = h * b.real(), bi[j] = h * b.imag();
       }
     }
-    phase_product(segment_length[k], in_re_[k], in_im_[k], gr, gi, er, ei, n);
     if (k >= 1) {
       // Node k's column: the B part of segment k − 1 (carry) plus the A part of segment k.
-      multiply_add(cr, ci, er, ei, ar, ai, nr, ni, n);
+      multiply_conj_add(cr, ci, nxt_re, nxt_im, br, bi, nr, ni, n);
       double* col = split.data() + static_cast<Eigen::Index>((k - 1) * 2 * p_dir);
       std::memcpy(col, nr, p_dir * sizeof(double));
       std::memcpy(col + p_dir, ni, p_dir * sizeof(double));
     }
-    multiply(er, ei, br, bi, cr, ci, n);
+    multiply(cur_re, cur_im, br, bi, cr, ci, n);
+    std::swap(cur_re, nxt_re);
+    std::swap(cur_im, nxt_im);
   }
 }
 
