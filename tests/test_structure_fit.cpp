@@ -146,6 +146,55 @@ TEST_CASE("fit: one value for one parameter solves it, with sigma from the state
   CHECK_THAT(fit_summary_text(spec, *model, r), Contains("as many targets as parameters"));
 }
 
+TEST_CASE("fit: parabola_peak_nm finds a parabola's vertex and clamps a window without a maximum", "[structure-fit]") {
+  std::vector<double> l, r, rising;
+  for (double x = 500; x <= 540 + 1e-9; x += 5) {
+    l.push_back(x);
+    r.push_back(0.3 - 1e-4 * (x - 523.7) * (x - 523.7));
+    rising.push_back(0.1 + 1e-3 * (x - 500) + 1e-6 * (x - 500) * (x - 500));
+  }
+  CHECK(parabola_peak_nm(l, r) == Approx(523.7).margin(1e-9));
+  // On the flank (vertex 20 nm beyond the window's end) the vertex is still found.
+  std::vector<double> flank;
+  for (double x : l) flank.push_back(0.3 - 1e-4 * (x - 560.0) * (x - 560.0));
+  CHECK(parabola_peak_nm(l, flank) == Approx(560.0).margin(1e-9));
+  CHECK(parabola_peak_nm(l, rising) == 540.0);
+  std::vector<double> falling(rising.rbegin(), rising.rend());
+  CHECK(parabola_peak_nm(l, falling) == 500.0);
+}
+
+// A quarter-wave keratin film: R(λ) of a lossless film in air is largest near where its phase
+// δ = 2π n(λ) d / λ is (m + ½)π (Born & Wolf §1.6), so a peak target at λ_t gives
+// d ≈ (m + ½) λ_t / (2 n(λ_t)). Not exactly: keratin's dispersion raises the film's finesse to the
+// blue, which puts the true maximum of R(λ) at d_exact 1.4 nm blue of λ_t, and the parabola
+// through the 40 nm window leans 0.6 nm back (δ ∝ n(λ)/λ), so the vertex is 0.9 nm blue of λ_t,
+// i.e. the fitted d is 0.42 nm thicker (numbers from the Airy formula); 0.6 nm bounds that.
+// Exactly: the model's peak equals the parabola through the independent Airy formula.
+TEST_CASE("fit: a keratin film's thickness from a peak position (quarter-wave condition)", "[structure-fit]") {
+  write_file("film.yaml", film_species(380.0));
+  const double lambda_t = 550.0;
+  const double d_exact = 1.5 * lambda_t / (2.0 * keratin_index(lambda_t));  // m = 1: 265.9 nm
+  const fs::path spec_file = write_file("film-peak.yaml",
+      "model: nominal_stack\nconfig: film.yaml\nparameters:\n"
+      "  - {path: nominal_stack.layers.0.thickness_nm, bounds: [240, 290], start: 255}\n"
+      "target: {peaks: [{lambda_nm: 550, sigma_nm: 0.5, window_nm: 40, step_nm: 5}]}\n");
+  const FitSpec spec = load_fit_spec(spec_file, testing::registry());
+  REQUIRE(spec.targets.size() == 1);
+  CHECK(fit_model_samples(spec.targets).size() == 9);
+  const auto model = make_forward_model(spec, testing::registry());
+  const FitResult r = fit_structure(spec, *model);
+  INFO(fit_summary_text(spec, *model, r));
+  CHECK(r.prediction[0] == Approx(lambda_t).margin(0.01));
+  CHECK(r.value[0] == Approx(d_exact).margin(0.6));
+  std::vector<double> l, airy;
+  for (double x = lambda_t - 20; x <= lambda_t + 20 + 1e-9; x += 5)
+    l.push_back(x), airy.push_back(airy_film(keratin_index(x), r.value[0], x));
+  CHECK(r.prediction[0] == Approx(parabola_peak_nm(l, airy)).margin(1e-6));
+  // A film 1 % thicker moves its peak 1 % to the red: the prediction follows the physics.
+  CHECK(model->predict({d_exact * 1.01})[0] == Approx(lambda_t * 1.01).margin(1.5));
+  CHECK_THAT(fit_summary_text(spec, *model, r), Contains("peak at theta 0 deg"));
+}
+
 TEST_CASE("fit: the rock dove's cortex and air gap from a noisy two-angle measured file", "[structure-fit]") {
   const std::string species = source_path("configs/species/rockdove.yaml");
   const std::string params =
@@ -292,7 +341,13 @@ TEST_CASE("fit spec: refusals name the spec's file, line and field", "[structure
              Contains("strat"));
   CHECK_THAT(refusal(head + "  - {path: nominal_stack.layers.0.thickness_nm, bounds: [300, 500]}\n"
                      "target: {measured: x.csv, points: [{lambda_nm: 500, R: 0.1}]}\n"),
-             Contains("bad.yaml:") && Contains("not both or neither"));
+             Contains("bad.yaml:") && Contains("not both"));
+  CHECK_THAT(refusal(head + "  - {path: nominal_stack.layers.0.thickness_nm, bounds: [300, 500]}\n"
+                     "target: {sigma: 0.1}\n"),
+             Contains("bad.yaml:") && Contains("`peaks`"));
+  CHECK_THAT(refusal(head + "  - {path: nominal_stack.layers.0.thickness_nm, bounds: [300, 500]}\n"
+                     "target: {peaks: [{lambda_nm: 500, window_nm: 8, step_nm: 5}]}\n"),
+             Contains("bad.yaml:") && Contains("at least 3 samples"));
   // Two parameters, one value: refused (one value for one parameter is a solve, allowed).
   write_file("film2.yaml", "species: film2\ncommon_name: Two films\nvariant: plain\nvariants:\n  plain: {}\n"
                            "nominal_stack:\n  layers:\n    - {material: keratin, thickness_nm: 380}\n"

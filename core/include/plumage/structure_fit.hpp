@@ -33,6 +33,12 @@
 //     - {path: variants.forest.nominal_stack.layers.0.thickness_nm, bounds: [450, 750], start: 520}
 //   target: {measured: rockdove.csv, theta_deg: 0, sigma: 0.01}
 //     # or  target: {points: [{lambda_nm: 500, theta_deg: 0, R: 0.12, polarization: s, sigma: 0.01}, ...]}
+//     # and/or  peaks: [{lambda_nm: 507.5, theta_deg: 0, polarization: s, sigma_nm: 2.5, window_nm: 40}]
+//
+// A peak target fits the position of a reflectance maximum (a spectrometer's peak, or a design hue
+// to keep while the brightness is fitted): the model is evaluated at λ_t + k·step over the window
+// λ_t ± window/2 and the peak is the vertex of the least-squares parabola through those samples
+// (smooth in the parameters, unlike an arg-max); its residual is (λ_peak − λ_t)/σ_nm.
 //   starts: 4
 //   seed: 1
 #pragma once
@@ -65,14 +71,35 @@ struct FitParameter {
   std::string field;            // its field there, "parameters[0].path"
 };
 
-// One reflectance to fit: R at (λ, θ), its standard deviation (σ) and polarization.
+enum class FitTargetKind { reflectance, peak };
+
+// One value to fit: R at (λ, θ), or (kind peak) the wavelength of the reflectance maximum near
+// λ at θ; its standard deviation σ (a fraction for R, nm for a peak) and polarization.
 struct FitTarget {
-  double lambda_nm = 0.0;
+  double lambda_nm = 0.0;  // peak: the target peak wavelength, also the window's centre
   double theta_deg = 0.0;
   double reflectance = 0.0;
   double sigma = 1.0;
   FitPolarization polarization = FitPolarization::unpolarized;
+  FitTargetKind kind = FitTargetKind::reflectance;
+  double window_nm = 0.0, step_nm = 0.0;  // peak: the sampled window and its step
 };
+
+// The target's value: R, or the peak wavelength in nm.
+double fit_target_value(const FitTarget& t);
+
+// The reflectances a forward model evaluates for the targets: each reflectance target itself, each
+// peak target's window samples λ_t − window/2 … λ_t + window/2 (in that order).
+std::vector<FitTarget> fit_model_samples(const std::vector<FitTarget>& targets);
+
+// The targets' predictions from the samples' reflectances (same order as fit_model_samples): R, or
+// the vertex of the least-squares parabola through a peak's window (parabola_peak_nm).
+std::vector<double> fit_target_predictions(const std::vector<FitTarget>& targets, const std::vector<double>& sample_r);
+
+// The wavelength of the maximum of the least-squares parabola R ≈ a + b·λ + c·λ² through
+// (lambda_nm, r), clamped to one window width beyond the sampled range (a window on the peak's
+// flank still points the fit the right way); a convex or flat fit gives the higher end.
+double parabola_peak_nm(const std::vector<double>& lambda_nm, const std::vector<double>& r);
 
 struct FitSpec {
   std::filesystem::path file;

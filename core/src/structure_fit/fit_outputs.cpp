@@ -1,5 +1,6 @@
 // write_fit_outputs (plumage/structure_fit.hpp): fit.txt, fit.csv, fit_starts.csv,
 // fit_spectrum.csv, fit.png and fitted.yaml of `plumage fit`.
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -57,8 +58,28 @@ std::string spectrum_csv(const FitSpec& spec, const FitResult& r) {
   csv << std::setprecision(10) << "lambda_nm,theta_deg,polarization,R_target,sigma,R_fit\n";
   for (std::size_t i = 0; i < spec.targets.size(); ++i) {
     const FitTarget& t = spec.targets[i];
+    if (t.kind != FitTargetKind::reflectance) continue;
     csv << t.lambda_nm << ',' << t.theta_deg << ',' << polarization_name(t.polarization) << ',' << t.reflectance << ','
         << t.sigma << ',' << r.prediction[i] << '\n';
+  }
+  return csv.str();
+}
+
+bool has_peaks(const FitSpec& spec) {
+  for (const FitTarget& t : spec.targets)
+    if (t.kind == FitTargetKind::peak) return true;
+  return false;
+}
+
+// Peak targets: the target and fitted peak wavelengths (the vertex of the window's parabola).
+std::string peaks_csv(const FitSpec& spec, const FitResult& r) {
+  std::ostringstream csv;
+  csv << std::setprecision(10) << "lambda_target_nm,theta_deg,polarization,sigma_nm,window_nm,lambda_fit_nm\n";
+  for (std::size_t i = 0; i < spec.targets.size(); ++i) {
+    const FitTarget& t = spec.targets[i];
+    if (t.kind != FitTargetKind::peak) continue;
+    csv << t.lambda_nm << ',' << t.theta_deg << ',' << polarization_name(t.polarization) << ',' << t.sigma << ','
+        << t.window_nm << ',' << r.prediction[i] << '\n';
   }
   return csv.str();
 }
@@ -71,6 +92,7 @@ void draw_fit(const FitSpec& spec, const FitResult& r, const std::filesystem::pa
   chart.y_label = "reflectance";
   for (std::size_t i = 0; i < spec.targets.size(); ++i) {
     const FitTarget& t = spec.targets[i];
+    if (t.kind != FitTargetKind::reflectance) continue;  // listed in fit.txt and fit_peaks.csv
     std::ostringstream panel;
     panel << "θ = " << t.theta_deg << "°, " << polarization_name(t.polarization);
     chart.points.push_back({panel.str(), "target", t.lambda_nm, t.reflectance, true});
@@ -85,8 +107,15 @@ std::string fit_summary_text(const FitSpec& spec, const StructureForwardModel& m
   std::ostringstream t;
   t << "plumage fit " << spec.file.string() << "\nmodel: " << model.description() << "\n"
     << "target: " << spec.targets.size() << " values" << (spec.measured.empty() ? "" : " from " + spec.measured.string())
-    << "\n\n";
+    << "\n";
   t << std::setprecision(6);
+  for (std::size_t i = 0; i < spec.targets.size(); ++i) {
+    const FitTarget& x = spec.targets[i];
+    if (x.kind != FitTargetKind::peak) continue;
+    t << "peak at theta " << x.theta_deg << " deg, " << polarization_name(x.polarization) << ": target " << x.lambda_nm
+      << " +- " << x.sigma << " nm, fitted " << r.prediction[i] << " nm (parabola over " << x.window_nm << " nm)\n";
+  }
+  t << "\n";
   for (std::size_t j = 0; j < spec.parameters.size(); ++j) {
     const FitParameter& p = spec.parameters[j];
     t << p.path << " = " << r.value[j] << " +- " << r.sigma[j] << " (1 sigma; bounds [" << p.lower << ", " << p.upper
@@ -133,7 +162,10 @@ void write_fit_outputs(const FitSpec& spec, const StructureForwardModel& model, 
   write_text_atomically(out / "fit.csv", parameters_csv(spec, result));
   write_text_atomically(out / "fit_starts.csv", starts_csv(spec, result));
   write_text_atomically(out / "fit_spectrum.csv", spectrum_csv(spec, result));
-  if (draw) draw_fit(spec, result, out / "fit.png");
+  if (has_peaks(spec)) write_text_atomically(out / "fit_peaks.csv", peaks_csv(spec, result));
+  const bool any_reflectance = std::any_of(spec.targets.begin(), spec.targets.end(),
+                                           [](const FitTarget& t) { return t.kind == FitTargetKind::reflectance; });
+  if (draw && any_reflectance) draw_fit(spec, result, out / "fit.png");
 }
 
 }  // namespace plumage

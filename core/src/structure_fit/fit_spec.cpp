@@ -30,6 +30,11 @@ struct PointOptions {
   FitPolarization polarization = FitPolarization::unpolarized;
 };
 
+struct PeakOptions {
+  double lambda_nm = 0, theta_deg = 0, sigma_nm = 2, window_nm = 40, step_nm = 5;
+  FitPolarization polarization = FitPolarization::unpolarized;
+};
+
 struct TargetOptions {
   std::string measured;
   std::optional<double> theta_deg;
@@ -38,6 +43,7 @@ struct TargetOptions {
   double sigma = 1.0;
   FitPolarization polarization = FitPolarization::unpolarized;
   std::vector<PointOptions> points;
+  std::vector<PeakOptions> peaks;
 };
 
 struct SpecOptions {
@@ -81,6 +87,22 @@ const ParamTable<PointOptions>& point_table() {
   return t;
 }
 
+const ParamTable<PeakOptions>& peak_table() {
+  using P = PeakOptions;
+  static const auto t =
+      ParamTable<P>{}
+          .number("lambda_nm", &P::lambda_nm, "nm", required, Limits::wavelength_nm(),
+                  "target wavelength of the reflectance maximum (the window's centre)")
+          .number("theta_deg", &P::theta_deg, "deg", 0.0, Limits::closed(0.0, 89.0), "angle of incidence")
+          .number("sigma_nm", &P::sigma_nm, "nm", 2.0, Limits::positive(), "standard deviation of the peak position")
+          .number("window_nm", &P::window_nm, "nm", 40.0, Limits::closed(4.0, 300.0),
+                  "width of the sampled window (narrower than the peak, so that a parabola describes it)")
+          .number("step_nm", &P::step_nm, "nm", 5.0, Limits::closed(0.5, 50.0), "sampling step in the window")
+          .choice("polarization", &P::polarization, kPolarizations, FitPolarization::unpolarized,
+                  "unpolarized (R_s + R_p)/2, s or p");
+  return t;
+}
+
 const ParamTable<TargetOptions>& target_table() {
   using T = TargetOptions;
   static const auto t =
@@ -105,7 +127,13 @@ const ParamTable<TargetOptions>& target_table() {
                     if (!p.has("points")) return;
                     for (const ParamView& item : p.items("points")) o.points.push_back(point_table().read(item));
                   })
-          .nested_specs(point_table().specs());
+          .nested_specs(point_table().specs())
+          .custom("peaks", "list", "-", "[]", "peak positions to fit (with or without reflectances)",
+                  [](const ParamView& p, T& o) {
+                    if (!p.has("peaks")) return;
+                    for (const ParamView& item : p.items("peaks")) o.peaks.push_back(peak_table().read(item));
+                  })
+          .nested_specs(peak_table().specs());
   return t;
 }
 
@@ -187,8 +215,10 @@ std::vector<FitTarget> measured_targets(const TargetOptions& t, const std::files
 
 void read_targets(const ParamView& root, const SpecOptions& o, FitSpec& spec) {
   const ParamView target = root.child("target");
-  if (o.target.measured.empty() == o.target.points.empty())
-    target.fail_here("give either `measured` (a file) or `points` (a list), not both or neither");
+  if (!o.target.measured.empty() && !o.target.points.empty())
+    target.fail_here("give either `measured` (a file) or `points` (a list), not both");
+  if (o.target.measured.empty() && o.target.points.empty() && o.target.peaks.empty())
+    target.fail_here("give `measured` (a file), `points` (a list) or `peaks` (a list)");
   if (!o.target.measured.empty()) {
     spec.measured = spec.file.parent_path() / o.target.measured;
     spec.targets = measured_targets(o.target, spec.measured);
@@ -196,12 +226,17 @@ void read_targets(const ParamView& root, const SpecOptions& o, FitSpec& spec) {
     for (const PointOptions& p : o.target.points)
       spec.targets.push_back({p.lambda_nm, p.theta_deg, p.reflectance, p.sigma, p.polarization});
   }
+  for (const PeakOptions& p : o.target.peaks) {
+    if (p.step_nm * 2.0 > p.window_nm) target.fail_here("a peak's window_nm must hold at least 3 samples of step_nm");
+    spec.targets.push_back({p.lambda_nm, p.theta_deg, 0.0, p.sigma_nm, p.polarization, FitTargetKind::peak,
+                            p.window_nm, p.step_nm});
+  }
   // As many values as parameters is a solve, not a fit: allowed (the worked magpie cells have one
   // reference reflectance each), with σ from the targets' stated σ (structure_solve.cpp).
   if (spec.targets.size() < spec.parameters.size())
     target.fail_here(std::to_string(spec.targets.size()) + " target values for " + std::to_string(spec.parameters.size()) +
                      " parameters: a fit needs at least as many values as parameters");
-  for (const FitTarget& t : spec.targets) {
+  for (const FitTarget& t : fit_model_samples(spec.targets)) {
     if (!Limits::wavelength_nm().admits(t.lambda_nm) || t.theta_deg < 0 || t.theta_deg > 89)
       target.fail_here("target at " + format_param_number(t.lambda_nm) + " nm, " + format_param_number(t.theta_deg) +
                        " deg: wavelength must be " + Limits::wavelength_nm().describe() + ", angle in [0, 89]");

@@ -236,12 +236,44 @@ std::string emit_yaml(const YAML::Node& node) {
   return out.c_str();
 }
 
-}  // namespace
-
-std::unique_ptr<StructureForwardModel> make_forward_model(const FitSpec& spec, const PluginRegistry& registry) {
+std::unique_ptr<StructureForwardModel> make_reflectance_model(const FitSpec& spec, const PluginRegistry& registry) {
   if (spec.model == FitModel::nominal_stack) return std::make_unique<NominalStackModel>(spec, registry);
   if (spec.model == FitModel::barbule) return std::make_unique<BarbuleModel>(spec, registry);
   return std::make_unique<CrystalTableModel>(spec, registry);
+}
+
+// Peak targets: the reflectance model runs on the window samples (a spec of its own, which it
+// refers to), and each peak's prediction is reduced from its window (peak_targets.cpp).
+class PeakTargetModel final : public StructureForwardModel {
+ public:
+  PeakTargetModel(const FitSpec& spec, const PluginRegistry& registry)
+      : targets_(spec.targets), samples_(with_samples(spec)), inner_(make_reflectance_model(samples_, registry)) {}
+  std::vector<double> predict(const std::vector<double>& values) const override {
+    return fit_target_predictions(targets_, inner_->predict(values));
+  }
+  std::string description() const override {
+    return inner_->description() + " (" + std::to_string(samples_.targets.size()) + " samples for " +
+           std::to_string(targets_.size()) + " targets with peaks)";
+  }
+
+ private:
+  static FitSpec with_samples(const FitSpec& spec) {
+    FitSpec s = spec;
+    s.targets = fit_model_samples(spec.targets);
+    return s;
+  }
+  std::vector<FitTarget> targets_;
+  FitSpec samples_;
+  std::unique_ptr<StructureForwardModel> inner_;
+};
+
+}  // namespace
+
+std::unique_ptr<StructureForwardModel> make_forward_model(const FitSpec& spec, const PluginRegistry& registry) {
+  const bool peaks = std::any_of(spec.targets.begin(), spec.targets.end(),
+                                 [](const FitTarget& t) { return t.kind == FitTargetKind::peak; });
+  if (peaks) return std::make_unique<PeakTargetModel>(spec, registry);
+  return make_reflectance_model(spec, registry);
 }
 
 std::string fitted_config_yaml(const FitSpec& spec, const std::vector<double>& values) {

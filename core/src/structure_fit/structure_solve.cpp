@@ -65,7 +65,7 @@ class DifferencedResiduals final : public ceres::CostFunction {
       return false;
     }
     for (std::size_t i = 0; i < spec_.targets.size(); ++i) {
-      r[i] = (predicted[i] - spec_.targets[i].reflectance) / spec_.targets[i].sigma;
+      r[i] = (predicted[i] - fit_target_value(spec_.targets[i])) / spec_.targets[i].sigma;
       if (!std::isfinite(r[i])) throw NumericalError("fit: the forward model returned a non-finite reflectance");
     }
     return true;
