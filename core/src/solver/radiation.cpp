@@ -172,8 +172,11 @@ struct Radiator::Plan {
   // e^{−iγ0 ρ̂_j·r_c} per chunk and target set, directions padded to a multiple of 4.
   std::vector<std::vector<std::vector<double>>> phase_re, phase_im;
   FactoredTentKernel kernel;
+  bool single_precision = false;                       // ChunkingOptions::single_precision_gemm
   Eigen::MatrixXd kernel_split, product;               // [Re K; Im K] (2P × nodes), its product
   std::vector<Eigen::MatrixXd> amplitude_split;        // per azimuth: [Re A | Im A]
+  Eigen::MatrixXf kernel_split_f, product_f;           // the same in float
+  std::vector<Eigen::MatrixXf> amplitude_split_f;
   std::vector<std::vector<double>> rows;               // per target set: [grid point][azimuth][output] (re, im)
   std::vector<std::vector<double>> accumulated;        // per target set: [direction][azimuth][output] (re, im)
   std::vector<double> acc;
@@ -201,6 +204,7 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
     for (const double phi : phis) on_cone = on_cone && std::abs(phi) <= 0.5 * kPi;
   }
   p.chunked = options.chunked && on_cone;
+  p.single_precision = options.single_precision_gemm;
   if (!p.chunked) return;
   p.layout = chunk_layout(vertices, segment_length, gamma0, options);
   const std::size_t sets = p.target_phi.size(), chunks = p.layout.chunks.size();
@@ -270,6 +274,46 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
 }
 
 namespace {
+// Project the six sums of each group on ê1, ê2 (radiation.hpp) at every grid point of a chunk's
+// product [Re K; Im K]·[Re A | Im A] (azimuth a), into the rows of each target set that wants
+// those outputs. The sums are formed in double whatever the product's precision.
+template <class Matrix>
+void project_samples(const Matrix& product, const std::vector<std::array<double, 3>>& e1s,
+                     const std::vector<std::array<double, 3>>& e2s, int groups, std::size_t a, std::size_t n_phi,
+                     std::span<const RadiationTargets> layout, std::vector<std::vector<double>>& rows) {
+  const Eigen::Index P = product.rows() / 2, columns = product.cols() / 2;
+  const std::size_t sets = layout.size();
+  for (Eigen::Index j = 0; j < P; ++j) {
+    const auto& e1 = e1s[static_cast<std::size_t>(j)];
+    const auto& e2 = e2s[static_cast<std::size_t>(j)];
+    auto sum = [&](Eigen::Index col) {
+      const double rr = product(j, col), ii = product(P + j, columns + col);
+      const double ri = product(j, columns + col), ir = product(P + j, col);
+      return Complex(rr - ii, ri + ir);
+    };
+    for (int g = 0; g < groups; ++g) {
+      const Eigen::Index b = 6 * g;
+      const Complex s0 = sum(b), s1 = sum(b + 1), s2 = sum(b + 2), s3 = sum(b + 3), s4 = sum(b + 4), s5 = sum(b + 5);
+      const Complex e1j = e1[0] * s0 + e1[2] * s2;
+      const Complex e2j = e2[0] * s0 + e2[1] * s1 + e2[2] * s2;
+      const Complex e1m = e1[0] * s3 + e1[2] * s5;
+      const Complex e2m = e2[0] * s3 + e2[1] * s4 + e2[2] * s5;
+      const Complex o[2] = {-e1j - e2m, -e2j + e1m};
+      for (int h = 0; h < 2; ++h) {
+        const int q = 2 * g + h;
+        for (std::size_t s = 0; s < sets; ++s) {
+          const int k = q - layout[s].first_output;
+          if (k < 0 || k >= layout[s].outputs) continue;
+          const std::size_t outputs = static_cast<std::size_t>(layout[s].outputs);
+          const std::size_t at = 2 * ((static_cast<std::size_t>(j) * n_phi + a) * outputs + static_cast<std::size_t>(k));
+          rows[s][at] = o[h].real();
+          rows[s][at + 1] = o[h].imag();
+        }
+      }
+    }
+  }
+}
+
 // accumulated[s] ([direction][azimuth][output] (re, im)) → results[a · sets + s].
 void copy_results(const std::vector<std::vector<double>>& accumulated, std::span<const RadiationTargets> layout,
                   std::size_t n_phi, std::vector<Eigen::MatrixXcd>& results) {
@@ -322,11 +366,18 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
   const int groups = static_cast<int>(columns / 6);
   const std::size_t samples = p.layout.samples;
   p.amplitude_split.resize(n_phi);
+  p.amplitude_split_f.resize(n_phi);
   for (std::size_t a = 0; a < n_phi; ++a) {
     if (amplitudes[a].cols() != columns) throw Error("radiate: azimuths differ in current columns");
-    p.amplitude_split[a].resize(amplitudes[a].rows(), 2 * columns);
-    p.amplitude_split[a].leftCols(columns) = amplitudes[a].real();
-    p.amplitude_split[a].rightCols(columns) = amplitudes[a].imag();
+    if (p.single_precision) {
+      p.amplitude_split_f[a].resize(amplitudes[a].rows(), 2 * columns);
+      p.amplitude_split_f[a].leftCols(columns) = amplitudes[a].real().cast<float>();
+      p.amplitude_split_f[a].rightCols(columns) = amplitudes[a].imag().cast<float>();
+    } else {
+      p.amplitude_split[a].resize(amplitudes[a].rows(), 2 * columns);
+      p.amplitude_split[a].leftCols(columns) = amplitudes[a].real();
+      p.amplitude_split[a].rightCols(columns) = amplitudes[a].imag();
+    }
   }
   p.rows.resize(sets);
   p.accumulated.resize(sets);
@@ -335,44 +386,23 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
     p.rows[s].resize(samples * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs));
     p.accumulated[s].assign(layout[s].phi_o_rad.size() * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs), 0.0);
   }
-  const auto P = static_cast<Eigen::Index>(samples);
   for (std::size_t ci = 0; ci < p.layout.chunks.size(); ++ci) {
     const auto& c = p.layout.chunks[ci];
     const std::size_t v0 = c.first, nv = c.count + 2;
     for (std::size_t a = 0; a < n_phi; ++a) {
       // Real arithmetic: [Re K; Im K]·[Re A | Im A] holds the four real products of K·A.
-      p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
-                     std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split);
-      p.product.noalias() = p.kernel_split * p.amplitude_split[a].middleRows(static_cast<Eigen::Index>(c.first),
-                                                                           static_cast<Eigen::Index>(c.count));
-      // Project the six sums of each group on ê1, ê2 (radiation.hpp) at every grid point, into
-      // the rows of each target set that wants those outputs.
-      for (Eigen::Index j = 0; j < P; ++j) {
-        const auto& e1 = p.e1[static_cast<std::size_t>(j)];
-        const auto& e2 = p.e2[static_cast<std::size_t>(j)];
-        auto sum = [&](Eigen::Index col) {
-          return Complex(p.product(j, col) - p.product(P + j, columns + col),
-                         p.product(j, columns + col) + p.product(P + j, col));
-        };
-        for (int g = 0; g < groups; ++g) {
-          const Eigen::Index b = 6 * g;
-          const Complex s0 = sum(b), s1 = sum(b + 1), s2 = sum(b + 2), s3 = sum(b + 3), s4 = sum(b + 4), s5 = sum(b + 5);
-          const Complex e1j = e1[0] * s0 + e1[2] * s2;
-          const Complex e2j = e2[0] * s0 + e2[1] * s1 + e2[2] * s2;
-          const Complex e1m = e1[0] * s3 + e1[2] * s5;
-          const Complex e2m = e2[0] * s3 + e2[1] * s4 + e2[2] * s5;
-          const Complex o[2] = {-e1j - e2m, -e2j + e1m};
-          for (int h = 0; h < 2; ++h) {
-            const int q = 2 * g + h;
-            for (std::size_t s = 0; s < sets; ++s) {
-              const int k = q - layout[s].first_output;
-              if (k < 0 || k >= layout[s].outputs) continue;
-              const std::size_t at = 2 * ((static_cast<std::size_t>(j) * n_phi + a) * static_cast<std::size_t>(layout[s].outputs) + static_cast<std::size_t>(k));
-              p.rows[s][at] = o[h].real();
-              p.rows[s][at + 1] = o[h].imag();
-            }
-          }
-        }
+      if (p.single_precision) {
+        p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
+                       std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split_f);
+        p.product_f.noalias() = p.kernel_split_f * p.amplitude_split_f[a].middleRows(
+                                                       static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
+        project_samples(p.product_f, p.e1, p.e2, groups, a, n_phi, layout, p.rows);
+      } else {
+        p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
+                       std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split);
+        p.product.noalias() = p.kernel_split * p.amplitude_split[a].middleRows(static_cast<Eigen::Index>(c.first),
+                                                                             static_cast<Eigen::Index>(c.count));
+        project_samples(p.product, p.e1, p.e2, groups, a, n_phi, layout, p.rows);
       }
     }
     // Interpolate every azimuth's samples to the targets and add them with the chunk's phase.

@@ -74,6 +74,16 @@ void multiply(const double* __restrict er, const double* __restrict ei, const do
   }
 }
 
+// A node's column of the split kernel: Re then Im.
+void store_column(const double* re, const double* im, std::size_t n, double* col) {
+  std::memcpy(col, re, n * sizeof(double));
+  std::memcpy(col + n, im, n * sizeof(double));
+}
+void store_column(const double* __restrict re, const double* __restrict im, std::size_t n, float* __restrict col) {
+  for (std::size_t j = 0; j < n; ++j) col[j] = static_cast<float>(re[j]);
+  for (std::size_t j = 0; j < n; ++j) col[n + j] = static_cast<float>(im[j]);
+}
+
 }  // namespace
 
 // Segment k (vertices k, k + 1, length h, phase increment u) adds h·e^{iψ_k}·A(u) to node k and
@@ -81,8 +91,9 @@ void multiply(const double* __restrict er, const double* __restrict ei, const do
 // e^{iψ_k}·e^{iu} = e^{iψ_{k+1}} (ψ is linear along the segment), node k's part is
 // e^{iψ_{k+1}}·conj(h·B(u)): one series per entry instead of two (issue 26; the identity is
 // exact, the two phases agree to rounding, ~|ψ|·1e-16).
-void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
-                               std::span<const double> chi, Eigen::MatrixXd& split) {
+template <class Matrix>
+void FactoredTentKernel::build_into(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+                                    std::span<const double> chi, Matrix& split) {
   const std::size_t verts = outgoing.verts, segs = verts - 1, nodes = verts - 2;
   const std::size_t n = outgoing.stride, p_dir = outgoing.directions;
   for (auto* b : {&ar_, &ai_, &br_, &bi_, &er_, &ei_, &carry_re_, &carry_im_, &node_re_, &node_im_}) b->resize(n);
@@ -140,14 +151,23 @@ void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const d
     if (k >= 1) {
       // Node k's column: the B part of segment k − 1 (carry) plus the A part of segment k.
       multiply_conj_add(cr, ci, nxt_re, nxt_im, br, bi, nr, ni, n);
-      double* col = split.data() + static_cast<Eigen::Index>((k - 1) * 2 * p_dir);
-      std::memcpy(col, nr, p_dir * sizeof(double));
-      std::memcpy(col + p_dir, ni, p_dir * sizeof(double));
+      auto* col = split.data() + static_cast<Eigen::Index>((k - 1) * 2 * p_dir);
+      store_column(nr, ni, p_dir, col);
     }
     multiply(cur_re, cur_im, br, bi, cr, ci, n);
     std::swap(cur_re, nxt_re);
     std::swap(cur_im, nxt_im);
   }
+}
+
+void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+                               std::span<const double> chi, Eigen::MatrixXd& split) {
+  build_into(outgoing, segment_length, chi, split);
+}
+
+void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+                               std::span<const double> chi, Eigen::MatrixXf& split) {
+  build_into(outgoing, segment_length, chi, split);
 }
 
 void TentKernel::accumulate(std::size_t segs, double* out) {

@@ -31,12 +31,20 @@ struct OutgoingPhases {
 // vertex range), split into real and imaginary parts for real GEMMs: `split` is (2·directions) ×
 // nodes, rows 0 … P − 1 Re K[m, φ_j], rows P … 2P − 1 Im K[m, φ_j]. One complex product per
 // entry instead of a sincos. Equal to TentKernel::build's kt (transposed) to rounding.
+// Computed in double either way; a float `split` (the single-precision GEMM of radiation.hpp)
+// receives the entries rounded once.
 class FactoredTentKernel {
  public:
   void build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
              std::span<const double> chi, Eigen::MatrixXd& split);
+  void build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+             std::span<const double> chi, Eigen::MatrixXf& split);
 
  private:
+  template <class Matrix>
+  void build_into(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+                  std::span<const double> chi, Matrix& split);
+
   std::vector<double> ar_, ai_, br_, bi_, er_, ei_, carry_re_, carry_im_, node_re_, node_im_, in_re_, in_im_, padded_;
 };
 
