@@ -177,8 +177,12 @@ struct Radiator::Plan {
   std::vector<Eigen::MatrixXd> amplitude_split;        // per azimuth: [Re A | Im A]
   Eigen::MatrixXf kernel_split_f, product_f;           // the same in float
   std::vector<Eigen::MatrixXf> amplitude_split_f;
-  std::vector<std::vector<double>> rows;               // per target set: [grid point][azimuth][output] (re, im)
-  std::vector<std::vector<double>> accumulated;        // per target set: [direction][azimuth][output] (re, im)
+  // Per target set: every chunk's projected samples, [chunk][grid point][azimuth][output] (re, im),
+  // in float (they carry the float GEMM's rounding already); the interpolated far field,
+  // [direction][azimuth][output] (re, im), summed over the chunks in double.
+  std::vector<std::vector<float>> rows;
+  std::vector<std::vector<double>> accumulated;
+  std::vector<float> chunk_acc;
   std::vector<double> acc;
 };
 
@@ -268,7 +272,7 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
   bytes += chunks * (directions + 4.0 * static_cast<double>(target_sizes.size())) * 16.0;  // chunk phases
   bytes += 2.0 * samples * static_cast<double>(layout.max_count + 2) * 8.0 * 2.0;  // kernel_split, product
   bytes += static_cast<double>(n_phi) * (verts - 2.0) * 2.0 * c * 8.0;  // amplitude_split
-  bytes += static_cast<double>(n_phi) * (samples + directions) * 2.0 * outputs * 8.0;  // rows, accumulated
+  bytes += static_cast<double>(n_phi) * (chunks * samples * 4.0 + directions * 8.0) * 2.0 * outputs;  // rows, accumulated
   bytes += static_cast<double>(layout.max_count + 2) * 8.0 * 13.0;      // the kernel's per-node buffers
   return bytes;
 }
@@ -280,7 +284,7 @@ namespace {
 template <class Matrix>
 void project_samples(const Matrix& product, const std::vector<std::array<double, 3>>& e1s,
                      const std::vector<std::array<double, 3>>& e2s, int groups, std::size_t a, std::size_t n_phi,
-                     std::span<const RadiationTargets> layout, std::vector<std::vector<double>>& rows) {
+                     std::size_t chunk, std::span<const RadiationTargets> layout, std::vector<std::vector<float>>& rows) {
   const Eigen::Index P = product.rows() / 2, columns = product.cols() / 2;
   const std::size_t sets = layout.size();
   for (Eigen::Index j = 0; j < P; ++j) {
@@ -305,12 +309,47 @@ void project_samples(const Matrix& product, const std::vector<std::array<double,
           const int k = q - layout[s].first_output;
           if (k < 0 || k >= layout[s].outputs) continue;
           const std::size_t outputs = static_cast<std::size_t>(layout[s].outputs);
-          const std::size_t at = 2 * ((static_cast<std::size_t>(j) * n_phi + a) * outputs + static_cast<std::size_t>(k));
-          rows[s][at] = o[h].real();
-          rows[s][at + 1] = o[h].imag();
+          const std::size_t at =
+              2 * (((chunk * static_cast<std::size_t>(P) + static_cast<std::size_t>(j)) * n_phi + a) * outputs +
+                   static_cast<std::size_t>(k));
+          rows[s][at] = static_cast<float>(o[h].real());
+          rows[s][at + 1] = static_cast<float>(o[h].imag());
         }
       }
     }
+  }
+}
+
+// Every chunk's samples of target set s interpolated to the set's directions (the stencils are
+// the same for all chunks: one grid) and summed with the chunks' phases e^{−iγ0 ρ̂_j·r_c}, one
+// direction at a time (its sum stays in cache; `accumulated` is written once). `width` floats per
+// grid point: [azimuth][output] (re, im).
+void interpolate_chunks(Radiator::Plan& p, std::size_t s, std::size_t width) {
+  const Stencil& st = p.stencils[s];
+  const std::size_t n_dir = p.target_phi[s].size(), chunks = p.layout.chunks.size(), samples = p.layout.samples;
+  p.chunk_acc.resize(width);
+  p.acc.resize(width);
+  float* __restrict tmp = p.chunk_acc.data();
+  double* __restrict acc = p.acc.data();
+  for (std::size_t j = 0; j < n_dir; ++j) {
+    const auto& w = st.weight[j];
+    for (std::size_t k = 0; k < width; ++k) acc[k] = 0.0;
+    for (std::size_t ci = 0; ci < chunks; ++ci) {
+      const float* __restrict y = p.rows[s].data() + (ci * samples + static_cast<std::size_t>(st.first[j])) * width;
+      for (std::size_t k = 0; k < width; ++k) tmp[k] = 0.0f;
+      for (int a = 0; a < st.points; ++a) {
+        const float* __restrict ya = y + static_cast<std::size_t>(a) * width;
+        const auto wa = static_cast<float>(w[a]);
+        for (std::size_t k = 0; k < width; ++k) tmp[k] += wa * ya[k];
+      }
+      const double pr = p.phase_re[ci][s][j], pi = p.phase_im[ci][s][j];
+      for (std::size_t k = 0; k < width; k += 2) {
+        const double re = tmp[k], im = tmp[k + 1];
+        acc[k] += pr * re - pi * im;
+        acc[k + 1] += pr * im + pi * re;
+      }
+    }
+    std::copy(acc, acc + width, p.accumulated[s].data() + j * width);
   }
 }
 
@@ -382,9 +421,10 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
   p.rows.resize(sets);
   p.accumulated.resize(sets);
   for (std::size_t s = 0; s < sets; ++s) {
-    // Every entry of rows is written for each chunk before it is read: no clearing.
-    p.rows[s].resize(samples * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs));
-    p.accumulated[s].assign(layout[s].phi_o_rad.size() * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs), 0.0);
+    // Every entry of rows is written before it is read, every entry of accumulated once: no clearing.
+    const std::size_t width = n_phi * 2 * static_cast<std::size_t>(layout[s].outputs);
+    p.rows[s].resize(p.layout.chunks.size() * samples * width);
+    p.accumulated[s].resize(layout[s].phi_o_rad.size() * width);
   }
   for (std::size_t ci = 0; ci < p.layout.chunks.size(); ++ci) {
     const auto& c = p.layout.chunks[ci];
@@ -396,43 +436,17 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
                        std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split_f);
         p.product_f.noalias() = p.kernel_split_f * p.amplitude_split_f[a].middleRows(
                                                        static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
-        project_samples(p.product_f, p.e1, p.e2, groups, a, n_phi, layout, p.rows);
+        project_samples(p.product_f, p.e1, p.e2, groups, a, n_phi, ci, layout, p.rows);
       } else {
         p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
                        std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split);
         p.product.noalias() = p.kernel_split * p.amplitude_split[a].middleRows(static_cast<Eigen::Index>(c.first),
                                                                              static_cast<Eigen::Index>(c.count));
-        project_samples(p.product, p.e1, p.e2, groups, a, n_phi, layout, p.rows);
-      }
-    }
-    // Interpolate every azimuth's samples to the targets and add them with the chunk's phase.
-    for (std::size_t s = 0; s < sets; ++s) {
-      const Stencil& st = p.stencils[s];
-      const std::size_t n_dir = layout[s].phi_o_rad.size();
-      const double* phase_re = p.phase_re[ci][s].data();
-      const double* phase_im = p.phase_im[ci][s].data();
-      const std::size_t width = n_phi * 2 * static_cast<std::size_t>(layout[s].outputs);  // doubles per grid point
-      p.acc.resize(width);
-      double* acc = p.acc.data();
-      for (std::size_t j = 0; j < n_dir; ++j) {
-        const double* y = p.rows[s].data() + static_cast<std::size_t>(st.first[j]) * width;
-        const auto& w = st.weight[j];
-        for (std::size_t k = 0; k < width; ++k) acc[k] = 0.0;
-        for (int a = 0; a < st.points; ++a) {
-          const double* ya = y + static_cast<std::size_t>(a) * width;
-          const double wa = w[a];
-          for (std::size_t k = 0; k < width; ++k) acc[k] += wa * ya[k];
-        }
-        double* out = p.accumulated[s].data() + j * width;
-        const double pr = phase_re[j], pi = phase_im[j];
-        for (std::size_t k = 0; k < width; k += 2) {
-          const double re = acc[k], im = acc[k + 1];
-          out[k] += pr * re - pi * im;
-          out[k + 1] += pr * im + pi * re;
-        }
+        project_samples(p.product, p.e1, p.e2, groups, a, n_phi, ci, layout, p.rows);
       }
     }
   }
+  for (std::size_t s = 0; s < sets; ++s) interpolate_chunks(p, s, n_phi * 2 * static_cast<std::size_t>(layout[s].outputs));
   copy_results(p.accumulated, layout, n_phi, results);
 }
 
