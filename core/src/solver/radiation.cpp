@@ -171,6 +171,8 @@ struct Radiator::Plan {
   std::vector<std::array<double, 3>> e1, e2;          // polarization directions at the grid points
   // e^{−iγ0 ρ̂_j·r_c} per chunk and target set, directions padded to a multiple of 4.
   std::vector<std::vector<std::vector<double>>> phase_re, phase_im;
+  // The same per target set, direction-major: [direction][chunk] (re, im), as the interpolation reads them.
+  std::vector<std::vector<double>> phase_by_direction;
   FactoredTentKernel kernel;
   bool single_precision = false;                       // ChunkingOptions::single_precision_gemm
   Eigen::MatrixXd kernel_split, product;               // [Re K; Im K] (2P × nodes), its product
@@ -251,6 +253,18 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
       }
     }
   }
+  p.phase_by_direction.resize(sets);
+  for (std::size_t s = 0; s < sets; ++s) {
+    const std::size_t n_dir = p.target_phi[s].size();
+    std::vector<double>& by = p.phase_by_direction[s];
+    by.resize(n_dir * chunks * 2);
+    for (std::size_t j = 0; j < n_dir; ++j) {
+      for (std::size_t ci = 0; ci < chunks; ++ci) {
+        by[2 * (j * chunks + ci)] = p.phase_re[ci][s][j];
+        by[2 * (j * chunks + ci) + 1] = p.phase_im[ci][s][j];
+      }
+    }
+  }
 }
 
 double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
@@ -320,29 +334,31 @@ void project_samples(const Matrix& product, const std::vector<std::array<double,
   }
 }
 
-// Every chunk's samples of target set s interpolated to the set's directions (the stencils are
-// the same for all chunks: one grid) and summed with the chunks' phases e^{−iγ0 ρ̂_j·r_c}, one
-// direction at a time (its sum stays in cache; `accumulated` is written once). `width` floats per
-// grid point: [azimuth][output] (re, im).
-void interpolate_chunks(Radiator::Plan& p, std::size_t s, std::size_t width) {
+// W > 0: the width known at compile time (one azimuth: 8 floats per grid point), so that the
+// short loops are single vector operations.
+template <std::size_t W>
+void interpolate_chunks_impl(Radiator::Plan& p, std::size_t s, std::size_t runtime_width) {
+  const std::size_t width = W > 0 ? W : runtime_width;
   const Stencil& st = p.stencils[s];
   const std::size_t n_dir = p.target_phi[s].size(), chunks = p.layout.chunks.size(), samples = p.layout.samples;
   p.chunk_acc.resize(width);
   p.acc.resize(width);
   float* __restrict tmp = p.chunk_acc.data();
   double* __restrict acc = p.acc.data();
+  const float* rows = p.rows[s].data();
   for (std::size_t j = 0; j < n_dir; ++j) {
     const auto& w = st.weight[j];
+    const double* phase = p.phase_by_direction[s].data() + 2 * j * chunks;
     for (std::size_t k = 0; k < width; ++k) acc[k] = 0.0;
     for (std::size_t ci = 0; ci < chunks; ++ci) {
-      const float* __restrict y = p.rows[s].data() + (ci * samples + static_cast<std::size_t>(st.first[j])) * width;
+      const float* __restrict y = rows + (ci * samples + static_cast<std::size_t>(st.first[j])) * width;
       for (std::size_t k = 0; k < width; ++k) tmp[k] = 0.0f;
       for (int a = 0; a < st.points; ++a) {
         const float* __restrict ya = y + static_cast<std::size_t>(a) * width;
         const auto wa = static_cast<float>(w[a]);
         for (std::size_t k = 0; k < width; ++k) tmp[k] += wa * ya[k];
       }
-      const double pr = p.phase_re[ci][s][j], pi = p.phase_im[ci][s][j];
+      const double pr = phase[2 * ci], pi = phase[2 * ci + 1];
       for (std::size_t k = 0; k < width; k += 2) {
         const double re = tmp[k], im = tmp[k + 1];
         acc[k] += pr * re - pi * im;
@@ -351,6 +367,15 @@ void interpolate_chunks(Radiator::Plan& p, std::size_t s, std::size_t width) {
     }
     std::copy(acc, acc + width, p.accumulated[s].data() + j * width);
   }
+}
+
+// Every chunk's samples of target set s interpolated to the set's directions (the stencils are
+// the same for all chunks: one grid) and summed with the chunks' phases e^{−iγ0 ρ̂_j·r_c}, one
+// direction at a time (its sum stays in cache; `accumulated` is written once). `width` floats per
+// grid point: [azimuth][output] (re, im).
+void interpolate_chunks(Radiator::Plan& p, std::size_t s, std::size_t width) {
+  if (width == 8) return interpolate_chunks_impl<8>(p, s, width);
+  interpolate_chunks_impl<0>(p, s, width);
 }
 
 // accumulated[s] ([direction][azimuth][output] (re, im)) → results[a · sets + s].
