@@ -15,7 +15,8 @@ struct ChunkingOptions {
   int stencil_points = 10;  // even, 4 … kMaxStencilPoints
   // The chunk GEMM (kernel × current columns) in single precision: the kernel entries and the
   // currents rounded to float once, products summed in float over a chunk's ~100 nodes (issue 26:
-  // error budget and speed in docs/benchmarks.md "simulate"). Everything else stays double.
+  // error budget and speed in docs/benchmarks.md "simulate"). The chunks' projected samples are
+  // stored in float either way; the sum over chunks and everything after it stay double.
   bool single_precision_gemm = true;
 };
 
