@@ -227,8 +227,14 @@ UnitFit fit_unit(const UnitInput& in) {
     std::vector<std::array<Complex, 3>> mean_field(np, {Complex{}, Complex{}, Complex{}});
     for (const FarField& ff : in.instances) {
       const double inv = ff.incident_power[p] > 0 ? 1.0 / std::sqrt(ff.incident_power[p]) : 0.0;
+      // FarField::reflectance_density with its cos θ_i and divisor once per instance (the same
+      // operations in the same order: the same bits).
+      const double cos_theta = std::cos(ff.incident.theta_rad);
+      const double divisor = 2.0 * kEta0_ohm * ff.incident_power[p];
+      const bool lit = ff.incident_power[p] > 0.0;
       for (std::size_t k = 0; k < np; ++k) {
-        const double d = ff.reflectance_density(p, k);
+        const auto& f = ff.field[p][k];
+        const double d = lit ? cos_theta * (std::norm(f[0]) + std::norm(f[1]) + std::norm(f[2])) / divisor : 0.0;
         u[k] += 0.5 * d / static_cast<double>(n_inst);
         pol_all += d;
         if (p == 0) pol1 += d;

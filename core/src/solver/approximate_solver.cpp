@@ -54,10 +54,12 @@ std::vector<JonesReflection> local_reflection(const PreparedTop& top, double lam
   const std::vector<LayerProfile>& profiles = sub ? top.sample_profiles : top.profiles;
   const std::size_t points = normals.size();
   std::vector<LocalReflection::Request> requests(points * phi_i_rad.size());
+  thread_local std::vector<double> psi;  // normal azimuths, once for all incident azimuths
+  psi.resize(points);
+  for (std::size_t m = 0; m < points; ++m) psi[m] = std::atan2(normals[m].x, normals[m].z);
   for (std::size_t a = 0; a < phi_i_rad.size(); ++a) {
     for (std::size_t m = 0; m < points; ++m) {
-      const double psi = std::atan2(normals[m].x, normals[m].z);  // normal azimuth
-      requests[a * points + m] = {lambda_nm, {theta_i_rad, phi_i_rad[a] - psi},
+      requests[a * points + m] = {lambda_nm, {theta_i_rad, phi_i_rad[a] - psi[m]},
                                   profiles.empty() ? nullptr : &profiles[m]};
     }
   }
@@ -66,12 +68,12 @@ std::vector<JonesReflection> local_reflection(const PreparedTop& top, double lam
   return jones;
 }
 
-Vec3 cross3(const Vec3& a, const Vec3& b) {
+[[gnu::always_inline]] inline Vec3 cross3(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-CVec3 cross3(const Vec3& a, const CVec3& b) {
+[[gnu::always_inline]] inline CVec3 cross3(const Vec3& a, const CVec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
 

@@ -13,6 +13,12 @@ struct ChunkingOptions {
   // samples (kernel entries, GEMM rows) than the former 3.0 with 6, and ~2x closer to the exact sum.
   double oversampling = 1.6;
   int stencil_points = 10;  // even, 4 … kMaxStencilPoints
+  // The chunk GEMM (kernel × current columns) in single precision: the kernel built in float
+  // (tent_kernel.hpp), the currents rounded to float once, products summed in float over a
+  // chunk's ~100 nodes (issue 26:
+  // error budget and speed in docs/benchmarks.md "simulate"). The chunks' projected samples are
+  // stored in float either way; the sum over chunks and everything after it stay double.
+  bool single_precision_gemm = true;
 };
 
 }  // namespace plumage::detail

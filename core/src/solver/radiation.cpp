@@ -171,11 +171,20 @@ struct Radiator::Plan {
   std::vector<std::array<double, 3>> e1, e2;          // polarization directions at the grid points
   // e^{−iγ0 ρ̂_j·r_c} per chunk and target set, directions padded to a multiple of 4.
   std::vector<std::vector<std::vector<double>>> phase_re, phase_im;
+  // The same per target set, direction-major: [direction][chunk] (re, im), as the interpolation reads them.
+  std::vector<std::vector<double>> phase_by_direction;
   FactoredTentKernel kernel;
+  bool single_precision = false;                       // ChunkingOptions::single_precision_gemm
   Eigen::MatrixXd kernel_split, product;               // [Re K; Im K] (2P × nodes), its product
   std::vector<Eigen::MatrixXd> amplitude_split;        // per azimuth: [Re A | Im A]
-  std::vector<std::vector<double>> rows;               // per target set: [grid point][azimuth][output] (re, im)
-  std::vector<std::vector<double>> accumulated;        // per target set: [direction][azimuth][output] (re, im)
+  Eigen::MatrixXf kernel_split_f, product_f;           // the same in float
+  std::vector<Eigen::MatrixXf> amplitude_split_f;
+  // Per target set: every chunk's projected samples, [chunk][grid point][azimuth][output] (re, im),
+  // in float (they carry the float GEMM's rounding already); the interpolated far field,
+  // [direction][azimuth][output] (re, im), summed over the chunks in double.
+  std::vector<std::vector<float>> rows;
+  std::vector<std::vector<double>> accumulated;
+  std::vector<float> chunk_acc;
   std::vector<double> acc;
 };
 
@@ -201,6 +210,7 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
     for (const double phi : phis) on_cone = on_cone && std::abs(phi) <= 0.5 * kPi;
   }
   p.chunked = options.chunked && on_cone;
+  p.single_precision = options.single_precision_gemm;
   if (!p.chunked) return;
   p.layout = chunk_layout(vertices, segment_length, gamma0, options);
   const std::size_t sets = p.target_phi.size(), chunks = p.layout.chunks.size();
@@ -243,6 +253,18 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
       }
     }
   }
+  p.phase_by_direction.resize(sets);
+  for (std::size_t s = 0; s < sets; ++s) {
+    const std::size_t n_dir = p.target_phi[s].size();
+    std::vector<double>& by = p.phase_by_direction[s];
+    by.resize(n_dir * chunks * 2);
+    for (std::size_t j = 0; j < n_dir; ++j) {
+      for (std::size_t ci = 0; ci < chunks; ++ci) {
+        by[2 * (j * chunks + ci)] = p.phase_re[ci][s][j];
+        by[2 * (j * chunks + ci) + 1] = p.phase_im[ci][s][j];
+      }
+    }
+  }
 }
 
 double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
@@ -264,12 +286,98 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
   bytes += chunks * (directions + 4.0 * static_cast<double>(target_sizes.size())) * 16.0;  // chunk phases
   bytes += 2.0 * samples * static_cast<double>(layout.max_count + 2) * 8.0 * 2.0;  // kernel_split, product
   bytes += static_cast<double>(n_phi) * (verts - 2.0) * 2.0 * c * 8.0;  // amplitude_split
-  bytes += static_cast<double>(n_phi) * (samples + directions) * 2.0 * outputs * 8.0;  // rows, accumulated
+  bytes += static_cast<double>(n_phi) * (chunks * samples * 4.0 + directions * 8.0) * 2.0 * outputs;  // rows, accumulated
   bytes += static_cast<double>(layout.max_count + 2) * 8.0 * 13.0;      // the kernel's per-node buffers
   return bytes;
 }
 
 namespace {
+// Project the six sums of each group on ê1, ê2 (radiation.hpp) at every grid point of a chunk's
+// product [Re K; Im K]·[Re A | Im A] (azimuth a), into the rows of each target set that wants
+// those outputs. The sums are formed in double whatever the product's precision.
+template <class Matrix>
+void project_samples(const Matrix& product, const std::vector<std::array<double, 3>>& e1s,
+                     const std::vector<std::array<double, 3>>& e2s, int groups, std::size_t a, std::size_t n_phi,
+                     std::size_t chunk, std::span<const RadiationTargets> layout, std::vector<std::vector<float>>& rows) {
+  const Eigen::Index P = product.rows() / 2, columns = product.cols() / 2;
+  const std::size_t sets = layout.size();
+  for (Eigen::Index j = 0; j < P; ++j) {
+    const auto& e1 = e1s[static_cast<std::size_t>(j)];
+    const auto& e2 = e2s[static_cast<std::size_t>(j)];
+    auto sum = [&](Eigen::Index col) {
+      const double rr = product(j, col), ii = product(P + j, columns + col);
+      const double ri = product(j, columns + col), ir = product(P + j, col);
+      return Complex(rr - ii, ri + ir);
+    };
+    for (int g = 0; g < groups; ++g) {
+      const Eigen::Index b = 6 * g;
+      const Complex s0 = sum(b), s1 = sum(b + 1), s2 = sum(b + 2), s3 = sum(b + 3), s4 = sum(b + 4), s5 = sum(b + 5);
+      const Complex e1j = e1[0] * s0 + e1[2] * s2;
+      const Complex e2j = e2[0] * s0 + e2[1] * s1 + e2[2] * s2;
+      const Complex e1m = e1[0] * s3 + e1[2] * s5;
+      const Complex e2m = e2[0] * s3 + e2[1] * s4 + e2[2] * s5;
+      const Complex o[2] = {-e1j - e2m, -e2j + e1m};
+      for (int h = 0; h < 2; ++h) {
+        const int q = 2 * g + h;
+        for (std::size_t s = 0; s < sets; ++s) {
+          const int k = q - layout[s].first_output;
+          if (k < 0 || k >= layout[s].outputs) continue;
+          const std::size_t outputs = static_cast<std::size_t>(layout[s].outputs);
+          const std::size_t at =
+              2 * (((chunk * static_cast<std::size_t>(P) + static_cast<std::size_t>(j)) * n_phi + a) * outputs +
+                   static_cast<std::size_t>(k));
+          rows[s][at] = static_cast<float>(o[h].real());
+          rows[s][at + 1] = static_cast<float>(o[h].imag());
+        }
+      }
+    }
+  }
+}
+
+// W > 0: the width known at compile time (one azimuth: 8 floats per grid point), so that the
+// short loops are single vector operations.
+template <std::size_t W>
+void interpolate_chunks_impl(Radiator::Plan& p, std::size_t s, std::size_t runtime_width) {
+  const std::size_t width = W > 0 ? W : runtime_width;
+  const Stencil& st = p.stencils[s];
+  const std::size_t n_dir = p.target_phi[s].size(), chunks = p.layout.chunks.size(), samples = p.layout.samples;
+  p.chunk_acc.resize(width);
+  p.acc.resize(width);
+  float* __restrict tmp = p.chunk_acc.data();
+  double* __restrict acc = p.acc.data();
+  const float* rows = p.rows[s].data();
+  for (std::size_t j = 0; j < n_dir; ++j) {
+    const auto& w = st.weight[j];
+    const double* phase = p.phase_by_direction[s].data() + 2 * j * chunks;
+    for (std::size_t k = 0; k < width; ++k) acc[k] = 0.0;
+    for (std::size_t ci = 0; ci < chunks; ++ci) {
+      const float* __restrict y = rows + (ci * samples + static_cast<std::size_t>(st.first[j])) * width;
+      for (std::size_t k = 0; k < width; ++k) tmp[k] = 0.0f;
+      for (int a = 0; a < st.points; ++a) {
+        const float* __restrict ya = y + static_cast<std::size_t>(a) * width;
+        const auto wa = static_cast<float>(w[a]);
+        for (std::size_t k = 0; k < width; ++k) tmp[k] += wa * ya[k];
+      }
+      const double pr = phase[2 * ci], pi = phase[2 * ci + 1];
+      for (std::size_t k = 0; k < width; k += 2) {
+        const double re = tmp[k], im = tmp[k + 1];
+        acc[k] += pr * re - pi * im;
+        acc[k + 1] += pr * im + pi * re;
+      }
+    }
+    std::copy(acc, acc + width, p.accumulated[s].data() + j * width);
+  }
+}
+
+// Every chunk's samples of target set s interpolated to the set's directions (the stencils are
+// the same for all chunks: one grid) and summed with the chunks' phases e^{−iγ0 ρ̂_j·r_c}, one
+// direction at a time (its sum stays in cache; `accumulated` is written once). `width` floats per
+// grid point: [azimuth][output] (re, im).
+void interpolate_chunks(Radiator::Plan& p, std::size_t s, std::size_t width) {
+  if (width == 8) return interpolate_chunks_impl<8>(p, s, width);
+  interpolate_chunks_impl<0>(p, s, width);
+}
+
 // accumulated[s] ([direction][azimuth][output] (re, im)) → results[a · sets + s].
 void copy_results(const std::vector<std::vector<double>>& accumulated, std::span<const RadiationTargets> layout,
                   std::size_t n_phi, std::vector<Eigen::MatrixXcd>& results) {
@@ -322,87 +430,48 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
   const int groups = static_cast<int>(columns / 6);
   const std::size_t samples = p.layout.samples;
   p.amplitude_split.resize(n_phi);
+  p.amplitude_split_f.resize(n_phi);
   for (std::size_t a = 0; a < n_phi; ++a) {
     if (amplitudes[a].cols() != columns) throw Error("radiate: azimuths differ in current columns");
-    p.amplitude_split[a].resize(amplitudes[a].rows(), 2 * columns);
-    p.amplitude_split[a].leftCols(columns) = amplitudes[a].real();
-    p.amplitude_split[a].rightCols(columns) = amplitudes[a].imag();
+    if (p.single_precision) {
+      p.amplitude_split_f[a].resize(amplitudes[a].rows(), 2 * columns);
+      p.amplitude_split_f[a].leftCols(columns) = amplitudes[a].real().cast<float>();
+      p.amplitude_split_f[a].rightCols(columns) = amplitudes[a].imag().cast<float>();
+    } else {
+      p.amplitude_split[a].resize(amplitudes[a].rows(), 2 * columns);
+      p.amplitude_split[a].leftCols(columns) = amplitudes[a].real();
+      p.amplitude_split[a].rightCols(columns) = amplitudes[a].imag();
+    }
   }
   p.rows.resize(sets);
   p.accumulated.resize(sets);
   for (std::size_t s = 0; s < sets; ++s) {
-    // Every entry of rows is written for each chunk before it is read: no clearing.
-    p.rows[s].resize(samples * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs));
-    p.accumulated[s].assign(layout[s].phi_o_rad.size() * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs), 0.0);
+    // Every entry of rows is written before it is read, every entry of accumulated once: no clearing.
+    const std::size_t width = n_phi * 2 * static_cast<std::size_t>(layout[s].outputs);
+    p.rows[s].resize(p.layout.chunks.size() * samples * width);
+    p.accumulated[s].resize(layout[s].phi_o_rad.size() * width);
   }
-  const auto P = static_cast<Eigen::Index>(samples);
   for (std::size_t ci = 0; ci < p.layout.chunks.size(); ++ci) {
     const auto& c = p.layout.chunks[ci];
     const std::size_t v0 = c.first, nv = c.count + 2;
     for (std::size_t a = 0; a < n_phi; ++a) {
       // Real arithmetic: [Re K; Im K]·[Re A | Im A] holds the four real products of K·A.
-      p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
-                     std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split);
-      p.product.noalias() = p.kernel_split * p.amplitude_split[a].middleRows(static_cast<Eigen::Index>(c.first),
-                                                                           static_cast<Eigen::Index>(c.count));
-      // Project the six sums of each group on ê1, ê2 (radiation.hpp) at every grid point, into
-      // the rows of each target set that wants those outputs.
-      for (Eigen::Index j = 0; j < P; ++j) {
-        const auto& e1 = p.e1[static_cast<std::size_t>(j)];
-        const auto& e2 = p.e2[static_cast<std::size_t>(j)];
-        auto sum = [&](Eigen::Index col) {
-          return Complex(p.product(j, col) - p.product(P + j, columns + col),
-                         p.product(j, columns + col) + p.product(P + j, col));
-        };
-        for (int g = 0; g < groups; ++g) {
-          const Eigen::Index b = 6 * g;
-          const Complex s0 = sum(b), s1 = sum(b + 1), s2 = sum(b + 2), s3 = sum(b + 3), s4 = sum(b + 4), s5 = sum(b + 5);
-          const Complex e1j = e1[0] * s0 + e1[2] * s2;
-          const Complex e2j = e2[0] * s0 + e2[1] * s1 + e2[2] * s2;
-          const Complex e1m = e1[0] * s3 + e1[2] * s5;
-          const Complex e2m = e2[0] * s3 + e2[1] * s4 + e2[2] * s5;
-          const Complex o[2] = {-e1j - e2m, -e2j + e1m};
-          for (int h = 0; h < 2; ++h) {
-            const int q = 2 * g + h;
-            for (std::size_t s = 0; s < sets; ++s) {
-              const int k = q - layout[s].first_output;
-              if (k < 0 || k >= layout[s].outputs) continue;
-              const std::size_t at = 2 * ((static_cast<std::size_t>(j) * n_phi + a) * static_cast<std::size_t>(layout[s].outputs) + static_cast<std::size_t>(k));
-              p.rows[s][at] = o[h].real();
-              p.rows[s][at + 1] = o[h].imag();
-            }
-          }
-        }
-      }
-    }
-    // Interpolate every azimuth's samples to the targets and add them with the chunk's phase.
-    for (std::size_t s = 0; s < sets; ++s) {
-      const Stencil& st = p.stencils[s];
-      const std::size_t n_dir = layout[s].phi_o_rad.size();
-      const double* phase_re = p.phase_re[ci][s].data();
-      const double* phase_im = p.phase_im[ci][s].data();
-      const std::size_t width = n_phi * 2 * static_cast<std::size_t>(layout[s].outputs);  // doubles per grid point
-      p.acc.resize(width);
-      double* acc = p.acc.data();
-      for (std::size_t j = 0; j < n_dir; ++j) {
-        const double* y = p.rows[s].data() + static_cast<std::size_t>(st.first[j]) * width;
-        const auto& w = st.weight[j];
-        for (std::size_t k = 0; k < width; ++k) acc[k] = 0.0;
-        for (int a = 0; a < st.points; ++a) {
-          const double* ya = y + static_cast<std::size_t>(a) * width;
-          const double wa = w[a];
-          for (std::size_t k = 0; k < width; ++k) acc[k] += wa * ya[k];
-        }
-        double* out = p.accumulated[s].data() + j * width;
-        const double pr = phase_re[j], pi = phase_im[j];
-        for (std::size_t k = 0; k < width; k += 2) {
-          const double re = acc[k], im = acc[k + 1];
-          out[k] += pr * re - pi * im;
-          out[k + 1] += pr * im + pi * re;
-        }
+      if (p.single_precision) {
+        p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
+                       std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split_f);
+        p.product_f.noalias() = p.kernel_split_f * p.amplitude_split_f[a].middleRows(
+                                                       static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
+        project_samples(p.product_f, p.e1, p.e2, groups, a, n_phi, ci, layout, p.rows);
+      } else {
+        p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
+                       std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split);
+        p.product.noalias() = p.kernel_split * p.amplitude_split[a].middleRows(static_cast<Eigen::Index>(c.first),
+                                                                             static_cast<Eigen::Index>(c.count));
+        project_samples(p.product, p.e1, p.e2, groups, a, n_phi, ci, layout, p.rows);
       }
     }
   }
+  for (std::size_t s = 0; s < sets; ++s) interpolate_chunks(p, s, n_phi * 2 * static_cast<std::size_t>(layout[s].outputs));
   copy_results(p.accumulated, layout, n_phi, results);
 }
 

@@ -40,6 +40,9 @@ void OutgoingPhases::build(std::span<const Vec2> vertices, Vec2 origin, double g
     }
     std::swap(g, g_next);
   }
+  re_f.assign(re.begin(), re.end());
+  im_f.assign(im.begin(), im.end());
+  dg_f.assign(dg.begin(), dg.end());
 }
 
 namespace {
@@ -47,8 +50,9 @@ namespace {
 // The vector loops of FactoredTentKernel::build, as functions with restrict parameters (GCC 12
 // does not vectorise them with restrict-qualified locals inside the segment loop).
 // e = e^{iχ}·e^{ig}
-void unit_phase(double c, double s, const double* __restrict gr, const double* __restrict gi, double* __restrict er,
-                double* __restrict ei, std::size_t n) {
+template <class T>
+void unit_phase(T c, T s, const T* __restrict gr, const T* __restrict gi, T* __restrict er, T* __restrict ei,
+                std::size_t n) {
   for (std::size_t j = 0; j < n; ++j) {
     er[j] = c * gr[j] - s * gi[j];
     ei[j] = c * gi[j] + s * gr[j];
@@ -56,9 +60,10 @@ void unit_phase(double c, double s, const double* __restrict gr, const double* _
 }
 
 // out = add + e·conj(w) (complex, split)
-void multiply_conj_add(const double* __restrict add_re, const double* __restrict add_im, const double* __restrict er,
-                       const double* __restrict ei, const double* __restrict wr, const double* __restrict wi,
-                       double* __restrict out_re, double* __restrict out_im, std::size_t n) {
+template <class T>
+void multiply_conj_add(const T* __restrict add_re, const T* __restrict add_im, const T* __restrict er,
+                       const T* __restrict ei, const T* __restrict wr, const T* __restrict wi, T* __restrict out_re,
+                       T* __restrict out_im, std::size_t n) {
   for (std::size_t j = 0; j < n; ++j) {
     out_re[j] = add_re[j] + (er[j] * wr[j] + ei[j] * wi[j]);
     out_im[j] = add_im[j] + (ei[j] * wr[j] - er[j] * wi[j]);
@@ -66,28 +71,40 @@ void multiply_conj_add(const double* __restrict add_re, const double* __restrict
 }
 
 // out = e·w (complex, split)
-void multiply(const double* __restrict er, const double* __restrict ei, const double* __restrict wr,
-              const double* __restrict wi, double* __restrict out_re, double* __restrict out_im, std::size_t n) {
+template <class T>
+void multiply(const T* __restrict er, const T* __restrict ei, const T* __restrict wr, const T* __restrict wi,
+              T* __restrict out_re, T* __restrict out_im, std::size_t n) {
   for (std::size_t j = 0; j < n; ++j) {
     out_re[j] = er[j] * wr[j] - ei[j] * wi[j];
     out_im[j] = er[j] * wi[j] + ei[j] * wr[j];
   }
 }
 
+// A node's column of the split kernel: Re then Im.
+void store_column(const double* re, const double* im, std::size_t n, double* col) {
+  std::memcpy(col, re, n * sizeof(double));
+  std::memcpy(col + n, im, n * sizeof(double));
+}
+
+using v8f = float __attribute__((vector_size(32)));
+
+// tent_weight_b_series in 8 float lanes: the same series, cut after u^11 (the next term,
+// 13·u^12/14!, is below 1.5e-10 for |u| ≤ 1, far under float rounding).
+inline void tent_weight_b_series_f(v8f u, v8f& b_re, v8f& b_im) {
+  const v8f u2 = u * u;
+  v8f pr = v8f{} + static_cast<float>(k_br[5]), pi = v8f{} + static_cast<float>(k_bi[5]);
+  for (int m = 4; m >= 0; --m) {
+    pr = pr * u2 + static_cast<float>(k_br[m]);
+    pi = pi * u2 + static_cast<float>(k_bi[m]);
+  }
+  b_re = pr;
+  b_im = u * pi;
+}
+
 }  // namespace
 
-// Segment k (vertices k, k + 1, length h, phase increment u) adds h·e^{iψ_k}·A(u) to node k and
-// h·e^{iψ_k}·B(u) to node k + 1 (tent_integrals.hpp). With A(u) = e^{iu}·conj(B(u)) and
-// e^{iψ_k}·e^{iu} = e^{iψ_{k+1}} (ψ is linear along the segment), node k's part is
-// e^{iψ_{k+1}}·conj(h·B(u)): one series per entry instead of two (issue 26; the identity is
-// exact, the two phases agree to rounding, ~|ψ|·1e-16).
-void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
-                               std::span<const double> chi, Eigen::MatrixXd& split) {
-  const std::size_t verts = outgoing.verts, segs = verts - 1, nodes = verts - 2;
-  const std::size_t n = outgoing.stride, p_dir = outgoing.directions;
-  for (auto* b : {&ar_, &ai_, &br_, &bi_, &er_, &ei_, &carry_re_, &carry_im_, &node_re_, &node_im_}) b->resize(n);
-  split.resize(static_cast<Eigen::Index>(2 * p_dir), static_cast<Eigen::Index>(nodes));
-  // e^{iχ_k} at every vertex.
+// e^{iχ_k} at every vertex (in_re_, in_im_).
+void FactoredTentKernel::incident_phases(std::span<const double> chi, std::size_t verts) {
   in_re_.resize(verts + 4), in_im_.resize(verts + 4), padded_.resize(verts + 4);
   for (std::size_t k = 0; k < verts + 4; ++k) padded_[k] = chi[std::min(k, verts - 1)];
   for (std::size_t k = 0; k < verts; k += 4) {
@@ -96,6 +113,21 @@ void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const d
     std::memcpy(in_re_.data() + k, &cs, sizeof cs);
     std::memcpy(in_im_.data() + k, &sn, sizeof sn);
   }
+}
+
+// Segment k (vertices k, k + 1, length h, phase increment u) adds h·e^{iψ_k}·A(u) to node k and
+// h·e^{iψ_k}·B(u) to node k + 1 (tent_integrals.hpp). With A(u) = e^{iu}·conj(B(u)) and
+// e^{iψ_k}·e^{iu} = e^{iψ_{k+1}} (ψ is linear along the segment), node k's part is
+// e^{iψ_{k+1}}·conj(h·B(u)): one series per entry instead of two (issue 26; the identity is
+// exact, the two phases agree to rounding, ~|ψ|·1e-16).
+template <class Matrix>
+void FactoredTentKernel::build_into(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+                                    std::span<const double> chi, Matrix& split) {
+  const std::size_t verts = outgoing.verts, segs = verts - 1, nodes = verts - 2;
+  const std::size_t n = outgoing.stride, p_dir = outgoing.directions;
+  for (auto* b : {&ar_, &ai_, &br_, &bi_, &er_, &ei_, &carry_re_, &carry_im_, &node_re_, &node_im_}) b->resize(n);
+  split.resize(static_cast<Eigen::Index>(2 * p_dir), static_cast<Eigen::Index>(nodes));
+  incident_phases(chi, verts);
   double* br = br_.data();
   double* bi = bi_.data();
   double* cur_re = er_.data();  // e^{iψ_k}
@@ -140,9 +172,77 @@ void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const d
     if (k >= 1) {
       // Node k's column: the B part of segment k − 1 (carry) plus the A part of segment k.
       multiply_conj_add(cr, ci, nxt_re, nxt_im, br, bi, nr, ni, n);
-      double* col = split.data() + static_cast<Eigen::Index>((k - 1) * 2 * p_dir);
-      std::memcpy(col, nr, p_dir * sizeof(double));
-      std::memcpy(col + p_dir, ni, p_dir * sizeof(double));
+      auto* col = split.data() + static_cast<Eigen::Index>((k - 1) * 2 * p_dir);
+      store_column(nr, ni, p_dir, col);
+    }
+    multiply(cur_re, cur_im, br, bi, cr, ci, n);
+    std::swap(cur_re, nxt_re);
+    std::swap(cur_im, nxt_im);
+  }
+}
+
+void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+                               std::span<const double> chi, Eigen::MatrixXd& split) {
+  build_into(outgoing, segment_length, chi, split);
+}
+
+// The float kernel (tent_kernel.hpp): the loops of build_into in 8 float lanes.
+void FactoredTentKernel::build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+                               std::span<const double> chi, Eigen::MatrixXf& split) {
+  const std::size_t verts = outgoing.verts, segs = verts - 1, nodes = verts - 2;
+  const std::size_t n = outgoing.stride, p_dir = outgoing.directions;  // n: a multiple of 8
+  for (auto& b : f_) b.resize(n);
+  split.resize(static_cast<Eigen::Index>(2 * p_dir), static_cast<Eigen::Index>(nodes));
+  incident_phases(chi, verts);
+  float* br = f_[0].data();
+  float* bi = f_[1].data();
+  float* cur_re = f_[2].data();
+  float* cur_im = f_[3].data();
+  float* nxt_re = f_[4].data();
+  float* nxt_im = f_[5].data();
+  float* cr = f_[6].data();
+  float* ci = f_[7].data();
+  float* nr = f_[8].data();
+  float* ni = f_[9].data();
+  unit_phase(static_cast<float>(in_re_[0]), static_cast<float>(in_im_[0]), outgoing.re_f.data(), outgoing.im_f.data(),
+             cur_re, cur_im, n);
+  for (std::size_t k = 0; k < segs; ++k) {
+    const double dchi = chi[k + 1] - chi[k], h = segment_length[k];
+    const float dchi_f = static_cast<float>(dchi), h_f = static_cast<float>(h);
+    const float* dg = outgoing.dg_f.data() + k * n;
+    unit_phase(static_cast<float>(in_re_[k + 1]), static_cast<float>(in_im_[k + 1]),
+               outgoing.re_f.data() + (k + 1) * n, outgoing.im_f.data() + (k + 1) * n, nxt_re, nxt_im, n);
+    v8f largest = v8f{} + 0.0f;
+    for (std::size_t j = 0; j < n; j += 8) {
+      v8f u;
+      std::memcpy(&u, dg + j, sizeof u);
+      u += dchi_f;
+      const v8f magnitude = u < 0.0f ? -u : u;
+      largest = magnitude > largest ? magnitude : largest;
+      v8f b_re, b_im;
+      tent_weight_b_series_f(u, b_re, b_im);
+      b_re *= h_f;
+      b_im *= h_f;
+      std::memcpy(br + j, &b_re, sizeof b_re);
+      std::memcpy(bi + j, &b_im, sizeof b_im);
+    }
+    float top = 0.0f;
+    for (int l = 0; l < 8; ++l) top = std::max(top, largest[l]);
+    if (top > static_cast<float>(kTaylorRange)) {
+      const double* dg_d = outgoing.dg.data() + k * n;
+      for (std::size_t j = 0; j < p_dir; ++j) {
+        const double u = dchi + dg_d[j];
+        if (std::abs(u) <= kTaylorRange) continue;
+        std::complex<double> a, b;
+        tent_weights_closed(u, a, b);
+        br[j] = static_cast<float>(h * b.real()), bi[j] = static_cast<float>(h * b.imag());
+      }
+    }
+    if (k >= 1) {
+      multiply_conj_add(cr, ci, nxt_re, nxt_im, br, bi, nr, ni, n);
+      float* col = split.data() + static_cast<Eigen::Index>((k - 1) * 2 * p_dir);
+      std::memcpy(col, nr, p_dir * sizeof(float));
+      std::memcpy(col + p_dir, ni, p_dir * sizeof(float));
     }
     multiply(cur_re, cur_im, br, bi, cr, ci, n);
     std::swap(cur_re, nxt_re);

@@ -23,6 +23,7 @@ namespace plumage::detail {
 struct OutgoingPhases {
   std::size_t verts = 0, stride = 0, directions = 0;
   std::vector<double> re, im, dg;  // [vertex · stride + direction] (dg: segment), zero-padded
+  std::vector<float> re_f, im_f, dg_f;  // the same rounded to float (the float kernel's)
 
   void build(std::span<const Vec2> vertices, Vec2 origin, double gamma0, std::span<const double> phi_o_rad);
 };
@@ -31,13 +32,25 @@ struct OutgoingPhases {
 // vertex range), split into real and imaginary parts for real GEMMs: `split` is (2·directions) ×
 // nodes, rows 0 … P − 1 Re K[m, φ_j], rows P … 2P − 1 Im K[m, φ_j]. One complex product per
 // entry instead of a sincos. Equal to TentKernel::build's kt (transposed) to rounding.
+// A float `split` (the single-precision GEMM of radiation.hpp) is computed in float throughout
+// (8 lanes): phases e^{iχ}, e^{ig} and increments u rounded to float, the same B series; the
+// entries then carry a few float roundings (~2e-7 relative) instead of one (issue 26, error in
+// docs/benchmarks.md "simulate"). The closed form (|u| > 1) is evaluated in double.
 class FactoredTentKernel {
  public:
   void build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
              std::span<const double> chi, Eigen::MatrixXd& split);
+  void build(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+             std::span<const double> chi, Eigen::MatrixXf& split);
 
  private:
+  void incident_phases(std::span<const double> chi, std::size_t verts);
+  template <class Matrix>
+  void build_into(const OutgoingPhases& outgoing, std::span<const double> segment_length,
+                  std::span<const double> chi, Matrix& split);
+
   std::vector<double> ar_, ai_, br_, bi_, er_, ei_, carry_re_, carry_im_, node_re_, node_im_, in_re_, in_im_, padded_;
+  std::vector<float> f_[10];  // the float kernel's buffers
 };
 
 class TentKernel {
