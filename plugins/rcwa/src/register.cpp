@@ -3,7 +3,9 @@
 // Provides:
 //   table_builder "rcwa"    photonic-crystal reflection tables by the Fourier modal method (issue 27)
 //   accuracy_ladder "rcwa"  harmonics and slices on a crystal against the finest rung (ladder/)
+//   benchmark "rcwa"        one entry and a whole production table (bench/)
 #include "builder.hpp"
+#include "rcwa_benchmark.hpp"
 #include "rcwa_ladder.hpp"
 #include "plumage/plugin_export.hpp"
 
@@ -39,6 +41,14 @@ void register_rcwa(Registrar& registrar) {
        .params = ladder_params().specs()},
       [](const ParamView& params, const PluginContext&) {
         return std::make_unique<RcwaLadder>(ladder_params().read(params).crystal);
+      });
+  registrar.add<Benchmark>(
+      {.type = "rcwa",
+       .version = kPluginVersion,
+       .summary = "rcwa table builder: one (lambda, angle) entry and a whole production table (beside the fdtd one)",
+       .params = bench_params().specs()},
+      [](const ParamView& params, const PluginContext&) {
+        return std::make_unique<RcwaBenchmark>(bench_params().read(params));
       });
 }
 
