@@ -1,5 +1,7 @@
 #include "solver.hpp"
 
+#include "lu.hpp"
+
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
@@ -106,11 +108,10 @@ Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<
   if (slice.boxes.empty()) return homogeneous_modes(eps_of[1], kx, ky);
   const int M = s.harmonics, n = 2 * M + 1;
   const Mat E = toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return eps_of[i]; }), M);
-  const Mat Ei = E.partialPivLu().inverse();
+  const Mat Ei = Lu(E).inverse();
   const Mat A = s.li_rule
-                    ? Mat(toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return 1.0 / eps_of[i]; }), M)
-                              .partialPivLu()
-                              .inverse())
+                    ? Lu(toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return 1.0 / eps_of[i]; }), M))
+                          .inverse()
                     : E;
   const auto Kx = kx.asDiagonal();
   const Mat Q = q_matrix(E, A, kx, ky);
@@ -143,7 +144,7 @@ Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k)
         if (std::abs(u(j) - t(k)) < kDegenerateTolerance * scale) return coupled();
-    const auto Wu_lu = eig_u.eigenvectors().partialPivLu();
+    const Lu Wu_lu(eig_u.eigenvectors());
     Mat G = Wu_lu.solve(ky * (Kx * eig_t.eigenvectors() - Ei * (KxA * eig_t.eigenvectors())));
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k) G(j, k) /= u(j) - t(k);
@@ -160,16 +161,15 @@ Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<
 
 // S-matrix of a slice of thickness k0·L between two zero-thickness air gaps (W0 = I, V0).
 SMatrix slice_smatrix(const Modes& m, const Mat& V0, double k0L) {
-  const auto Wlu = m.W.partialPivLu();
-  const auto Vlu = m.V.partialPivLu();
+  const Lu Wlu(m.W), Vlu(m.V);
   const Mat WiW0 = Wlu.inverse(), ViV0 = Vlu.solve(V0);
   const Mat A = WiW0 + ViV0, B = WiW0 - ViV0;
   const Vec x = (Complex(0.0, 1.0) * k0L * m.gamma).array().exp();
-  const auto Alu = A.partialPivLu();
+  const Lu Alu(A);
   const Mat XB = x.asDiagonal() * B;
   const Mat BAi = B * Alu.inverse();
   const Mat D = A - XB * Alu.solve(XB);
-  const auto Dlu = D.partialPivLu();
+  const Lu Dlu(D);
   SMatrix s;
   s.s11 = Dlu.solve(XB * Alu.solve(x.asDiagonal() * A) - B);
   s.s12 = Dlu.solve(x.asDiagonal() * (A - BAi * B));
@@ -182,8 +182,8 @@ SMatrix slice_smatrix(const Modes& m, const Mat& V0, double k0L) {
 SMatrix star(const SMatrix& a, const SMatrix& b) {
   const int n = static_cast<int>(a.s11.rows());
   const Mat I = Mat::Identity(n, n);
-  const Mat D = (I - b.s11 * a.s22).transpose().partialPivLu().solve(a.s12.transpose()).transpose();
-  const Mat F = (I - a.s22 * b.s11).transpose().partialPivLu().solve(b.s21.transpose()).transpose();
+  const Mat D = Lu(I - b.s11 * a.s22).solve_right(a.s12);
+  const Mat F = Lu(I - a.s22 * b.s11).solve_right(b.s21);
   return {a.s11 + D * b.s11 * a.s21, D * b.s12, F * a.s21, b.s22 + F * a.s22 * b.s12};
 }
 
@@ -199,9 +199,9 @@ SMatrix half_period_shift(const SMatrix& s, int M) {
 
 // Half-space above (incident side, `top`) or below: its modes against the air gap.
 SMatrix half_space(const Modes& m, const Mat& V0, bool top) {
-  const Mat A = m.W + V0.partialPivLu().solve(m.V), B = m.W - V0.partialPivLu().solve(m.V);
-  const auto Alu = A.partialPivLu();
-  const Mat Ai = Alu.inverse();
+  const Mat V0iV = Lu(V0).solve(m.V);
+  const Mat A = m.W + V0iV, B = m.W - V0iV;
+  const Mat Ai = Lu(A).inverse();
   if (top) return {-Ai * B, 2.0 * Ai, 0.5 * (A - B * Ai * B), B * Ai};
   return {B * Ai, 0.5 * (A - B * Ai * B), 2.0 * Ai, -Ai * B};
 }
@@ -212,7 +212,7 @@ SMatrix half_space(const Modes& m, const Mat& V0, bool top) {
 Mat reflect_over(const SMatrix& s, const Mat& R) {
   Mat I_minus = -(s.s22 * R);
   I_minus.diagonal().array() += 1.0;
-  return s.s11 + (s.s12 * R) * I_minus.partialPivLu().solve(s.s21);
+  return s.s11 + (s.s12 * R) * Lu(std::move(I_minus)).solve(s.s21);
 }
 
 // The stack as units, top to bottom: runs of slices between two host-only slices (a row of rods,
@@ -322,7 +322,11 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, 
   std::vector<bool> done(cell.n_types, false);
   auto slice_s = [&](const Slice& slice) -> const SMatrix& {
     if (!done[slice.type]) {
-      by_type[slice.type] = slice_smatrix(slice_modes(slice, cell, eps_of, kx, ky, s), V0, k0 * slice.thickness_nm);
+      // A slice shifted by half a period of one already solved: D S D (half_period_shift).
+      const int twin = cell.half_shift_type.empty() ? -1 : cell.half_shift_type[slice.type];
+      by_type[slice.type] = twin >= 0 && done[twin]
+                                ? half_period_shift(by_type[twin], M)
+                                : slice_smatrix(slice_modes(slice, cell, eps_of, kx, ky, s), V0, k0 * slice.thickness_nm);
       done[slice.type] = true;
     }
     return by_type[slice.type];
