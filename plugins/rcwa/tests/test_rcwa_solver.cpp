@@ -72,7 +72,9 @@ TEST_CASE("rcwa: a layered keratin/melanin film equals the closed-form multilaye
       {Material::keratin(), 120.0}, {Material::melanin(), 80.0}, {Material::keratin(), 95.0}, {Material::melanin(), 80.0}};
   const SlicedCell cell = film(layers, 190.0);
   for (double lambda : {420.0, 550.0, 690.0}) {
-    for (auto [theta, phi] : {std::pair{0.0, 0.0}, {0.4, 0.6}, {1.1, 0.3}, {0.2, 1.3}}) {
+    // ... including cos θ cos φ = 0.25 and 0.1 (near grazing, where the FDTD is continued, NOTES.md §4)
+    for (auto [theta, phi] : {std::pair{0.0, 0.0}, {0.4, 0.6}, {1.1, 0.3}, {0.2, 1.3}, {std::acos(0.25), 0.0},
+                              {1.0, std::acos(0.1 / std::cos(1.0))}}) {
       const EntryResult r = solve_entry(cell, lambda, theta, phi, {.harmonics = 5, .li_rule = true});
       std::vector<FilmLayer> ref;
       for (const auto& [m, d] : layers) ref.push_back({m.index(lambda) * m.index(lambda), d});
