@@ -54,7 +54,8 @@ Benchmark::Report RcwaBenchmark::run(const Options& options) const {
   // mean covers normal to grazing incidence.
   const TableGrid row = TableGrid::uniform(550, 550, 1, kProductionTableGrid.n_theta, kProductionTableGrid.n_phi);
   const Timed one = timed([&] { RcwaTableBuilder(single_params).build(cell, row, {}); });
-  const double entries_row = static_cast<double>(row.cos_theta.size() * row.cos_phi.size());
+  const std::size_t n_row = row.cos_theta.size() * row.cos_phi.size();
+  const double entries_row = static_cast<double>(n_row);
   const BuildSettings s = build_settings(single_params);
   std::ostringstream settings;
   settings << "orders -" << s.solver.harmonics << "..+" << s.solver.harmonics << ", " << s.slices_per_row
@@ -63,7 +64,7 @@ Benchmark::Report RcwaBenchmark::run(const Options& options) const {
   md << std::fixed << std::setprecision(2);
   md << "## rcwa\n\n"
      << "Fourier modal method table builder (`table_builder` rcwa, plugins/rcwa/NOTES.md), production fidelity ("
-     << settings.str() << ", Li's rule), both polarizations per entry. `entry`: the mean over the " << entries_row
+     << settings.str() << ", Li's rule), both polarizations per entry. `entry`: the mean over the " << n_row
      << " entries of one wavelength of the production angle grid (550 nm), one thread, in ms. `table`: the whole "
         "table on "
      << b.threads << " threads. Wall and process CPU seconds.\n\n"
@@ -71,11 +72,11 @@ Benchmark::Report RcwaBenchmark::run(const Options& options) const {
      << "|---|---|---|---|---|---|---|---|---|\n";
   const std::string head = "| " + machine_description() + " | `" + options.command + "` | " + today_iso() + " | " + cell.name;
   md << head << " | entry (1 lambda, 1 angle, 2 pols), ms | " << 1e3 * one.wall / entries_row << " | "
-     << 1e3 * one.cpu / entries_row << " | mean of " << entries_row << " entries | <= 5 ms |\n";
+     << 1e3 * one.cpu / entries_row << " | mean of " << n_row << " entries | <= 5 ms |\n";
   if (options.progress) {
     std::ostringstream line;
     line << std::fixed << std::setprecision(2) << "entry: " << 1e3 * one.wall / entries_row << " ms wall, "
-         << 1e3 * one.cpu / entries_row << " ms CPU (mean of " << entries_row << ")";
+         << 1e3 * one.cpu / entries_row << " ms CPU (mean of " << n_row << ")";
     options.progress(line.str());
   }
   if (!b.skip_table) {
