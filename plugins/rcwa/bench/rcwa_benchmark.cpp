@@ -41,6 +41,10 @@ const ParamTable<BenchParams>& bench_params() {
           .integer("n_theta", &B::n_theta, "1", 0, Limits::closed(0, 1000), "table cos theta nodes; 0: the production grid")
           .integer("n_phi", &B::n_phi, "1", 0, Limits::closed(0, 1000), "table cos phi nodes; 0: the production grid")
           .integer("threads", &B::threads, "1", 2, Limits::closed(1, 64), "worker threads of the table build")
+          .integer("harmonics", &B::harmonics, "1", 0, Limits::closed(0, 60),
+                   "the builder's harmonics option; 0: the cell's production setting")
+          .integer("slices_per_row", &B::slices_per_row, "1", 0, Limits::closed(0, 200),
+                   "the builder's slices_per_row option; 0: the cell's production setting")
           .boolean("skip_table", &B::skip_table, false, "only the single-entry timing");
   return table;
 }
@@ -50,20 +54,22 @@ Benchmark::Report RcwaBenchmark::run(const Options& options) const {
   const CrystalCell cell = load_crystal_cell(b.config);
   BuilderParams single_params;
   single_params.threads = 1;
+  single_params.harmonics = b.harmonics;
+  single_params.slices_per_row = b.slices_per_row;
   // Single entries: one λ row of the production angle grid (20 x 50 entries, 1 thread), so the
   // mean covers normal to grazing incidence.
   const TableGrid row = TableGrid::uniform(550, 550, 1, kProductionTableGrid.n_theta, kProductionTableGrid.n_phi);
   const Timed one = timed([&] { RcwaTableBuilder(single_params).build(cell, row, {}); });
   const std::size_t n_row = row.cos_theta.size() * row.cos_phi.size();
   const double entries_row = static_cast<double>(n_row);
-  const BuildSettings s = build_settings(single_params);
+  const BuildSettings s = build_settings(single_params, cell_settings(cell));
   std::ostringstream settings;
   settings << "orders -" << s.solver.harmonics << "..+" << s.solver.harmonics << ", " << s.slices_per_row
            << " slices per rod diameter";
   std::ostringstream md;
   md << std::fixed << std::setprecision(2);
   md << "## rcwa\n\n"
-     << "Fourier modal method table builder (`table_builder` rcwa, plugins/rcwa/NOTES.md), production fidelity ("
+     << "Fourier modal method table builder (`table_builder` rcwa, plugins/rcwa/NOTES.md), ("
      << settings.str() << ", Li's rule), both polarizations per entry. `entry`: the mean over the " << n_row
      << " entries of one wavelength of the production angle grid (550 nm), one thread, in ms. `table`: the whole "
         "table on "
@@ -83,7 +89,7 @@ Benchmark::Report RcwaBenchmark::run(const Options& options) const {
     const int nl = or_default(b.n_lambda, kProductionTableGrid.n_lambda), nt = or_default(b.n_theta, kProductionTableGrid.n_theta),
               np = or_default(b.n_phi, kProductionTableGrid.n_phi);
     const TableGrid grid = TableGrid::uniform(400, 700, nl, nt, np);
-    BuilderParams table_params;
+    BuilderParams table_params = single_params;
     table_params.threads = b.threads;
     const Timed full = timed([&] { RcwaTableBuilder(table_params).build(cell, grid, {}); });
     md << head << " | table " << nl << " x " << nt << " x " << np << " x 2 pols | " << full.wall << " | " << full.cpu

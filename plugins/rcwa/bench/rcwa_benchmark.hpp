@@ -15,6 +15,7 @@ struct BenchParams {
   std::string config;  // crystal config
   int n_lambda = 0, n_theta = 0, n_phi = 0;  // 0: the production table grid
   int threads = 2;
+  int harmonics = 0, slices_per_row = 0;  // 0: the production settings of the cell
   bool skip_table = false;
 };
 const ParamTable<BenchParams>& bench_params();
