@@ -7,12 +7,19 @@
 #include "builder.hpp"
 #include "rcwa_benchmark.hpp"
 #include "rcwa_ladder.hpp"
+#include "plumage/config_sections.hpp"
 #include "plumage/plugin_export.hpp"
 
 namespace {
 
 using namespace plumage;
 using namespace plumage::rcwa;
+
+// The crystal files' `rcwa:` section (production settings of one cell), listed beside the cell's
+// own fields in docs/parameters.md (registered by the plug-in, which reads it).
+const ConfigSectionRegistration kCrystalSection{
+    {"crystal", "crystal.rcwa", "production settings of the rcwa table builder for this cell (plug-in rcwa)",
+     [] { return cell_params().specs(); }}};
 
 class RcwaLadder final : public AccuracyLadder {
  public:
