@@ -211,6 +211,8 @@ TEST_CASE("crystal cells: a map under another key is a table builder's section, 
   const CrystalCell peacock = load_crystal_cell(fs::path(PLUMAGE_SOURCE_DIR) / "configs/crystals/peacock-cyan.yaml");
   REQUIRE(peacock.builder_sections.count("fdtd_periodic") == 1);
   CHECK(peacock.builder_sections.at("fdtd_periodic").keys().size() == 4);
+  // The rcwa builder's section, although `rcwa` is two edits from the scalar field `rows`.
+  CHECK(load_crystal_cell(write_temp("rcwa.yaml", base + "  rcwa: {harmonics: 7}\n")).builder_sections.count("rcwa") == 1);
   // Not a section: a scalar under an unknown key, or a map one typo away from a cell field.
   CHECK_THROWS_WITH(load_crystal_cell(write_temp("scalar.yaml", base + "  step_nm: 7\n")),
                     Catch::Contains("unknown key 'step_nm'"));

@@ -262,12 +262,12 @@ TEST_CASE("crystal tables come from the preparation step, as --tables says", "[c
   INFO(r.output);
   CHECK(r.status == 0);
   CHECK_THAT(r.output, Catch::Contains("to prepare: green: build the reflection table of mallard-green "
-                                       "(50 x 20 x 50 entries) into build/cache/tables/mallard-green-"));
+                                       "(201 x 20 x 50 entries) into build/cache/tables/mallard-green-"));
   CHECK_FALSE(fs::exists(dir / "build"));
   r = run_command(in_dir + "--tables never simulate " + mallard +
                   " --lambda-nm 550 --theta-deg 0 --phi-deg 0 --instances 1 --out x.ffs");
   CHECK(r.status == 1);
-  CHECK_THAT(r.output, Catch::Contains("mallard-green (50 x 20 x 50 entries)") && Catch::Contains("--tables build"));
+  CHECK_THAT(r.output, Catch::Contains("mallard-green (201 x 20 x 50 entries)") && Catch::Contains("--tables build"));
   CHECK_FALSE(fs::exists(dir / "x.ffs"));
   // The option may follow the subcommand; a bad value is a usage error.
   r = run_command(in_dir + "simulate " + mallard + " --tables sometimes --out x.ffs");

@@ -11,12 +11,16 @@
 
 namespace plumage {
 
-// The table grids of the two fidelities, declared once: production is the paper's 50 λ × 20 cos θ
-// × 50 cos φ_local (also the photonic_crystal model's default), preview 16 × 10 × 10.
+// The table grids of the two fidelities, declared once: production 201 λ (1.5 nm) × 20 cos θ × 50
+// cos φ_local (also the photonic_crystal model's default), preview 16 × 10 × 10. The paper's 50 λ
+// (6.1 nm) left up to 0.021 in |r|² to the linear λ interpolation of ReflectionTable::query on the
+// magpie cells; 201 keep it ≤ 0.0013 on all 14 cells away from the host's Rayleigh anomalies
+// (issue 27 part 4, plugins/rcwa/NOTES.md §6). The FDTD's cost does not depend on it (broadband
+// runs); the rcwa's grows with it.
 struct TableGridSize {
   int n_lambda = 0, n_theta = 0, n_phi = 0;
 };
-inline constexpr TableGridSize kProductionTableGrid{50, 20, 50};
+inline constexpr TableGridSize kProductionTableGrid{201, 20, 50};
 inline constexpr TableGridSize kPreviewTableGrid{16, 10, 10};
 
 struct TableBuildRequest {

@@ -65,9 +65,13 @@ const ConfigSectionRegistration kCrystalSection{
 
 // Every map under a key the table does not declare is a table builder's section, kept unread (a
 // view of its own, outside this map's bookkeeping, so that finish() leaves it to the builder). A
-// key within a typo of a cell field is reported as the unknown key it is.
+// key within a typo of a map-valued cell field (`materials`) is reported as the unknown key it
+// is; scalar fields are no candidates (a map cannot be a misspelt `rows`, and `rcwa` is one typo
+// of edit distance 2 away from it).
 void collect_builder_sections(const ParamView& node, CrystalCell& c) {
-  const std::vector<std::string> fields = crystal_table().names();
+  std::vector<std::string> fields;
+  for (const ParamSpec& spec : crystal_table().specs())
+    if (spec.type == "map") fields.push_back(spec.name);
   const std::vector<std::string> known = node.known_keys();
   for (const std::string& key : node.keys()) {
     if (std::find(known.begin(), known.end(), key) != known.end()) continue;

@@ -16,6 +16,7 @@
 #include "plumage/config_document.hpp"
 #include "plumage/conventions.hpp"
 #include "plumage/crystal_cell.hpp"
+#include "plumage/table_build.hpp"
 #include "table_build.hpp"
 
 namespace plumage::fdtd_table {
@@ -67,9 +68,11 @@ const ParamTable<BenchParams>& bench_params() {
   static const auto table =
       ParamTable<B>{}
           .text("config", &B::config, "configs/crystals/mallard-green.yaml", "crystal config")
-          .integer("n_lambda", &B::n_lambda, "1", 50, Limits::closed(1, 1000), "table wavelengths")
-          .integer("n_theta", &B::n_theta, "1", 20, Limits::closed(1, 1000), "table cos theta nodes")
-          .integer("n_phi", &B::n_phi, "1", 50, Limits::closed(1, 1000), "table cos phi nodes")
+          .integer("n_lambda", &B::n_lambda, "1", kProductionTableGrid.n_lambda, Limits::closed(1, 1000),
+                   "table wavelengths (the production grid's)")
+          .integer("n_theta", &B::n_theta, "1", kProductionTableGrid.n_theta, Limits::closed(1, 1000),
+                   "table cos theta nodes")
+          .integer("n_phi", &B::n_phi, "1", kProductionTableGrid.n_phi, Limits::closed(1, 1000), "table cos phi nodes")
           .number("kz_min", &B::kz_min, "1", 0.25, Limits::closed(0.01, 0.9),
                   "table entries with cos(theta)cos(phi) below this are continued to the grazing limit (impedance "
                   "form), not simulated")

@@ -1,6 +1,7 @@
 // Benchmark "fdtd" (`plumage bench fdtd`): the periodic FDTD table builder — one (λ, angle)
 // solve at production resolution (both polarizations), one broadband fixed-Bloch-k run, and the
-// whole production table of one crystal (50 λ × 20 cos θ × 50 cos φ × 2 polarizations); its
+// whole production table of one crystal (by default kProductionTableGrid, 201 λ × 20 cos θ × 50
+// cos φ × 2 polarizations: the parameter table's defaults); its
 // report is the "fdtd" section of docs/benchmarks.md.
 #pragma once
 

@@ -51,20 +51,43 @@ const ParamTable<BuilderParams>& builder_params() {
   return table;
 }
 
-BuildSettings build_settings(const BuilderParams& p) {
+const ParamTable<CellSettings>& cell_params() {
+  using C = CellSettings;
+  static const auto table =
+      ParamTable<C>{}
+          .integer("harmonics", &C::harmonics, "1", 0, Limits::closed(0, 60),
+                   "production Fourier orders -M..M of this crystal; 0: the preset's (5)")
+          .integer("slices_per_row", &C::slices_per_row, "1", 0, Limits::closed(0, 200),
+                   "production staircase slices per rod diameter of this crystal; 0: the preset's (12)")
+          .boolean("richardson", &C::richardson, false,
+                   "production Richardson extrapolation in slices for this crystal (from slices_per_row/2)");
+  return table;
+}
+
+CellSettings cell_settings(const CrystalCell& cell) {
+  const auto it = cell.builder_sections.find("rcwa");
+  if (it == cell.builder_sections.end()) return cell_params().defaults();
+  const CellSettings c = cell_params().read(it->second);
+  it->second.finish();
+  return c;
+}
+
+BuildSettings build_settings(const BuilderParams& p, const CellSettings& cell) {
   const bool preview = p.fidelity == Fidelity::preview;
+  const int harmonics = !preview && cell.harmonics > 0 ? cell.harmonics : kProductionHarmonics;
+  const int slices = !preview && cell.slices_per_row > 0 ? cell.slices_per_row : kProductionSlices;
   BuildSettings s;
-  s.solver.harmonics = p.harmonics > 0 ? p.harmonics : (preview ? kPreviewHarmonics : kProductionHarmonics);
+  s.solver.harmonics = p.harmonics > 0 ? p.harmonics : (preview ? kPreviewHarmonics : harmonics);
   s.solver.li_rule = p.li_rule;
-  s.slices_per_row = p.slices_per_row > 0 ? p.slices_per_row : (preview ? kPreviewSlices : kProductionSlices);
-  s.richardson = p.richardson;
+  s.slices_per_row = p.slices_per_row > 0 ? p.slices_per_row : (preview ? kPreviewSlices : slices);
+  s.richardson = p.richardson || (!preview && cell.richardson);
   return s;
 }
 
 // Per worker: the S-matrices of every slice type (4 blocks of (2(2M+1))² complex), the modes and
 // the eigen-solver's workspace of one slice (~12 such matrices), the running product (4 blocks).
 MemoryEstimate RcwaTableBuilder::estimate_memory(const CrystalCell& cell, const TableGrid& grid) const {
-  const BuildSettings s = build_settings(params_);
+  const BuildSettings s = build_settings(params_, cell_settings(cell));
   const SlicedCell sliced = slice_crystal(cell, s.slices_per_row);
   const double dim = 2.0 * (2 * s.solver.harmonics + 1);
   const double block = dim * dim * 16.0;
@@ -83,7 +106,7 @@ MemoryEstimate RcwaTableBuilder::estimate_memory(const CrystalCell& cell, const 
 
 ReflectionTable RcwaTableBuilder::build(const CrystalCell& cell, const TableGrid& grid, Progress progress) const {
   check_memory(estimate_memory(cell, grid));
-  const BuildSettings s = build_settings(params_);
+  const BuildSettings s = build_settings(params_, cell_settings(cell));
   const SlicedCell sliced = slice_crystal(cell, s.slices_per_row);
   const SlicedCell half = slice_crystal(cell, std::max(1, s.slices_per_row / 2));
   TableMetadata meta;

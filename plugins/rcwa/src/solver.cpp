@@ -1,9 +1,10 @@
 #include "solver.hpp"
 
+#include "lu.hpp"
+
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
-#include <map>
 #include <vector>
 
 namespace plumage::rcwa {
@@ -51,6 +52,9 @@ Complex forward_root(Complex g2) {
   return g;
 }
 
+// Relative gap |u − t| / max|eigenvalue| below which slice_modes solves the coupled problem.
+constexpr double kDegenerateTolerance = 1e-7;
+
 struct Modes {
   Mat W, V;
   Vec gamma;
@@ -82,25 +86,9 @@ Modes homogeneous_modes(Complex eps, const Vec& kx, double ky) {
   return m;
 }
 
-Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<Complex>& eps_of, const Vec& kx,
-                  double ky, const SolverSettings& s) {
-  if (slice.boxes.empty()) return homogeneous_modes(eps_of[1], kx, ky);
-  const int M = s.harmonics, n = 2 * M + 1;
-  const Mat E = toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return eps_of[i]; }), M);
-  const Mat Ei = E.partialPivLu().inverse();
-  const Mat A = s.li_rule
-                    ? Mat(toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return 1.0 / eps_of[i]; }), M)
-                              .partialPivLu()
-                              .inverse())
-                    : E;
-  const auto Kx = kx.asDiagonal();
-  const Mat I = Mat::Identity(n, n);
-  Mat P(2 * n, 2 * n);
-  P.topLeftCorner(n, n) = ky * (Kx * Ei);
-  P.topRightCorner(n, n) = I - Kx * Ei * Kx;
-  P.bottomLeftCorner(n, n) = ky * ky * Ei - I;
-  P.bottomRightCorner(n, n) = -ky * (Ei * Kx);
-  const Mat Q = q_matrix(E, A, kx, ky);
+// The 2n × 2n mode problem of a slice from P and Q directly (the general path; also the fallback of
+// slice_modes when a TE-like and a TM-like eigenvalue coincide).
+Modes coupled_modes(const Mat& P, const Mat& Q) {
   Eigen::ComplexEigenSolver<Mat> eig(P * Q);
   Modes m;
   m.W = eig.eigenvectors();
@@ -109,18 +97,79 @@ Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<
   return m;
 }
 
+// A y-invariant slice: PQ = [[T − k_y², 0], [C, U − k_y²]] with T = (I − K_x ε⁻¹ K_x) A (TM-like,
+// E_x), U = [[ε]] − K_x² (TE-like, E_y), C = k_y (K_x − ε⁻¹ K_x A) (expand P Q of solver.hpp; the
+// k_y terms of the diagonal blocks cancel). So the conical modes come from two n × n eigenproblems
+// (the planar TM and TE ones, γ² shifted by −k_y²) instead of one 2n × 2n: U's modes are (0; w_u),
+// T's are (w_t; y) with (U − t) y = −C w_t, solved in U's eigenbasis (4x fewer flops than the
+// coupled solve; the same γ and fields up to the modes' normalisation, NOTES.md §5).
+Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<Complex>& eps_of, const Vec& kx,
+                  double ky, const SolverSettings& s) {
+  if (slice.boxes.empty()) return homogeneous_modes(eps_of[1], kx, ky);
+  const int M = s.harmonics, n = 2 * M + 1;
+  const Mat E = toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return eps_of[i]; }), M);
+  const Mat Ei = Lu(E).inverse();
+  const Mat A = s.li_rule
+                    ? Lu(toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return 1.0 / eps_of[i]; }), M))
+                          .inverse()
+                    : E;
+  const auto Kx = kx.asDiagonal();
+  const Mat Q = q_matrix(E, A, kx, ky);
+  auto coupled = [&] {
+    const Mat I = Mat::Identity(n, n);
+    Mat P(2 * n, 2 * n);
+    P.topLeftCorner(n, n) = ky * (Kx * Ei);
+    P.topRightCorner(n, n) = I - Kx * Ei * Kx;
+    P.bottomLeftCorner(n, n) = ky * ky * Ei - I;
+    P.bottomRightCorner(n, n) = -ky * (Ei * Kx);
+    return coupled_modes(P, Q);
+  };
+  if (s.coupled_eigenproblem) return coupled();
+  const Mat KxA = Kx * A;
+  const Mat T = A - Kx * (Ei * KxA);
+  Mat U = E;
+  U.diagonal() -= kx.cwiseProduct(kx);
+  const Eigen::ComplexEigenSolver<Mat> eig_t(T), eig_u(U);
+  const Vec& t = eig_t.eigenvalues();
+  const Vec& u = eig_u.eigenvalues();
+  Modes m;
+  m.W = Mat::Zero(2 * n, 2 * n);
+  m.W.topLeftCorner(n, n) = eig_t.eigenvectors();
+  m.W.bottomRightCorner(n, n) = eig_u.eigenvectors();
+  if (ky != 0.0) {
+    // Near-coincident t and u (a nearly homogeneous slice) make (U − t)⁻¹ ill-conditioned: solve
+    // the coupled problem there instead.
+    double scale = 1.0;
+    for (int j = 0; j < n; ++j) scale = std::max({scale, std::abs(t(j)), std::abs(u(j))});
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+        if (std::abs(u(j) - t(k)) < kDegenerateTolerance * scale) return coupled();
+    const Lu Wu_lu(eig_u.eigenvectors());
+    Mat G = Wu_lu.solve(ky * (Kx * eig_t.eigenvectors() - Ei * (KxA * eig_t.eigenvectors())));
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) G(j, k) /= u(j) - t(k);
+    m.W.bottomLeftCorner(n, n) = -eig_u.eigenvectors() * G;
+  }
+  m.gamma.resize(2 * n);
+  for (int j = 0; j < n; ++j) {
+    m.gamma(j) = forward_root(t(j) - ky * ky);
+    m.gamma(n + j) = forward_root(u(j) - ky * ky);
+  }
+  m.V = Q * m.W * m.gamma.cwiseInverse().asDiagonal();
+  return m;
+}
+
 // S-matrix of a slice of thickness k0·L between two zero-thickness air gaps (W0 = I, V0).
 SMatrix slice_smatrix(const Modes& m, const Mat& V0, double k0L) {
-  const auto Wlu = m.W.partialPivLu();
-  const auto Vlu = m.V.partialPivLu();
+  const Lu Wlu(m.W), Vlu(m.V);
   const Mat WiW0 = Wlu.inverse(), ViV0 = Vlu.solve(V0);
   const Mat A = WiW0 + ViV0, B = WiW0 - ViV0;
   const Vec x = (Complex(0.0, 1.0) * k0L * m.gamma).array().exp();
-  const auto Alu = A.partialPivLu();
+  const Lu Alu(A);
   const Mat XB = x.asDiagonal() * B;
   const Mat BAi = B * Alu.inverse();
   const Mat D = A - XB * Alu.solve(XB);
-  const auto Dlu = D.partialPivLu();
+  const Lu Dlu(D);
   SMatrix s;
   s.s11 = Dlu.solve(XB * Alu.solve(x.asDiagonal() * A) - B);
   s.s12 = Dlu.solve(x.asDiagonal() * (A - BAi * B));
@@ -133,8 +182,8 @@ SMatrix slice_smatrix(const Modes& m, const Mat& V0, double k0L) {
 SMatrix star(const SMatrix& a, const SMatrix& b) {
   const int n = static_cast<int>(a.s11.rows());
   const Mat I = Mat::Identity(n, n);
-  const Mat D = (I - b.s11 * a.s22).transpose().partialPivLu().solve(a.s12.transpose()).transpose();
-  const Mat F = (I - a.s22 * b.s11).transpose().partialPivLu().solve(b.s21.transpose()).transpose();
+  const Mat D = Lu(I - b.s11 * a.s22).solve_right(a.s12);
+  const Mat F = Lu(I - a.s22 * b.s11).solve_right(b.s21);
   return {a.s11 + D * b.s11 * a.s21, D * b.s12, F * a.s21, b.s22 + F * a.s22 * b.s12};
 }
 
@@ -150,11 +199,78 @@ SMatrix half_period_shift(const SMatrix& s, int M) {
 
 // Half-space above (incident side, `top`) or below: its modes against the air gap.
 SMatrix half_space(const Modes& m, const Mat& V0, bool top) {
-  const Mat A = m.W + V0.partialPivLu().solve(m.V), B = m.W - V0.partialPivLu().solve(m.V);
-  const auto Alu = A.partialPivLu();
-  const Mat Ai = Alu.inverse();
+  const Mat V0iV = Lu(V0).solve(m.V);
+  const Mat A = m.W + V0iV, B = m.W - V0iV;
+  const Mat Ai = Lu(A).inverse();
   if (top) return {-Ai * B, 2.0 * Ai, 0.5 * (A - B * Ai * B), B * Ai};
   return {B * Ai, 0.5 * (A - B * Ai * B), 2.0 * Ai, -Ai * B};
+}
+
+
+// Reflection matrix of the layers `s` over a stack of reflection R, both seen from the gap above:
+// R' = s11 + s12 R (I − s22 R)⁻¹ s21, the s11 block of the star product s ⊗ (R, ·, ·, ·).
+Mat reflect_over(const SMatrix& s, const Mat& R) {
+  Mat I_minus = -(s.s22 * R);
+  I_minus.diagonal().array() += 1.0;
+  return s.s11 + (s.s12 * R) * Lu(std::move(I_minus)).solve(s.s21);
+}
+
+// The stack as units, top to bottom: runs of slices between two host-only slices (a row of rods,
+// or interleaved rows) that occur more than once, counting a run shifted by half a period as the
+// same, are "repeated" chunks whose S-matrix is built once (by star products) and reused; every
+// other slice is its own unit (its S-matrix is reused by slice type).
+struct StackUnit {
+  std::size_t begin = 0, end = 0;  // slices [begin, end)
+  bool repeated = false;
+  std::size_t first_equal = 0;     // the first unit of identical geometry (holds the S-matrix)
+  long half_shift_of = -1;         // a unit whose geometry, shifted by half a period, is this one
+};
+
+std::vector<StackUnit> stack_units(const SlicedCell& cell) {
+  struct Run {
+    std::size_t begin, end;
+    std::vector<int> key, shifted;
+  };
+  std::vector<Run> runs;
+  for (std::size_t i = 0; i < cell.slices.size();) {
+    std::size_t j = i + 1;
+    if (!cell.slices[i].boxes.empty())
+      while (j < cell.slices.size() && !cell.slices[j].boxes.empty()) ++j;
+    Run r{i, j, {}, {}};
+    for (std::size_t k = i; k < j; ++k) {
+      r.key.push_back(cell.slices[k].type);
+      r.shifted.push_back(cell.half_shift_type.empty() ? -1 : cell.half_shift_type[cell.slices[k].type]);
+    }
+    runs.push_back(std::move(r));
+    i = j;
+  }
+  std::vector<StackUnit> units;
+  std::vector<long> unit_of_run(runs.size(), -1);
+  for (std::size_t a = 0; a < runs.size(); ++a) {
+    const Run& r = runs[a];
+    std::size_t copies = 0;
+    for (const Run& o : runs) copies += (o.key == r.key || o.key == r.shifted) ? 1 : 0;
+    if (r.end - r.begin < 2 || copies < 2) {
+      for (std::size_t k = r.begin; k < r.end; ++k) units.push_back({k, k + 1, false, units.size(), -1});
+      continue;
+    }
+    StackUnit u{r.begin, r.end, true, units.size(), -1};
+    for (std::size_t b = 0; b < a; ++b) {
+      if (unit_of_run[b] < 0) continue;
+      if (runs[b].key == r.key) u.first_equal = units[unit_of_run[b]].first_equal;
+      else if (runs[b].key == r.shifted && u.half_shift_of < 0) u.half_shift_of = static_cast<long>(units[unit_of_run[b]].first_equal);
+    }
+    unit_of_run[a] = static_cast<long>(units.size());
+    units.push_back(u);
+  }
+  // Both partners of a half-period pair may take the other's S-matrix (the reflection recursion
+  // runs bottom-up, so the lower one is usually built first).
+  for (const StackUnit& u : units)
+    if (u.half_shift_of >= 0)
+      for (StackUnit& v : units)
+        if (v.repeated && v.first_equal == static_cast<std::size_t>(u.half_shift_of) && v.half_shift_of < 0)
+          v.half_shift_of = static_cast<long>(u.first_equal);
+  return units;
 }
 
 }  // namespace
@@ -206,37 +322,47 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, 
   std::vector<bool> done(cell.n_types, false);
   auto slice_s = [&](const Slice& slice) -> const SMatrix& {
     if (!done[slice.type]) {
-      by_type[slice.type] = slice_smatrix(slice_modes(slice, cell, eps_of, kx, ky, s), V0, k0 * slice.thickness_nm);
+      // A slice shifted by half a period of one already solved: D S D (half_period_shift).
+      const int twin = cell.half_shift_type.empty() ? -1 : cell.half_shift_type[slice.type];
+      by_type[slice.type] = twin >= 0 && done[twin]
+                                ? half_period_shift(by_type[twin], M)
+                                : slice_smatrix(slice_modes(slice, cell, eps_of, kx, ky, s), V0, k0 * slice.thickness_nm);
       done[slice.type] = true;
     }
     return by_type[slice.type];
   };
-  // Rows repeat: the slices between two host-only slices (one row of rods, or two interleaved rows)
-  // form a chunk whose S-matrix is made once per entry and reused for every equal chunk.
-  std::map<std::vector<int>, SMatrix> chunks;
-  SMatrix total = half_space(top, V0, true);
-  for (std::size_t i = 0; i < cell.slices.size();) {
-    std::size_t j = i + 1;
-    if (!cell.slices[i].boxes.empty())
-      while (j < cell.slices.size() && !cell.slices[j].boxes.empty()) ++j;
-    std::vector<int> key;
-    for (std::size_t k = i; k < j; ++k) key.push_back(cell.slices[k].type);
-    auto it = chunks.find(key);
-    if (it == chunks.end()) {
-      std::vector<int> shifted_key;
-      for (int t : key) shifted_key.push_back(cell.half_shift_type.empty() ? -1 : cell.half_shift_type[t]);
-      const auto sh = chunks.find(shifted_key);
-      if (sh != chunks.end()) it = chunks.emplace(std::move(key), half_period_shift(sh->second, M)).first;
+  const std::vector<StackUnit> units = stack_units(cell);
+  std::vector<SMatrix> chunk_s(units.size());  // the S-matrix of each repeated chunk, built once
+  std::vector<bool> chunk_done(units.size(), false);
+  auto unit_s = [&](std::size_t u) -> const SMatrix& {
+    const StackUnit& unit = units[u];
+    if (!unit.repeated) return slice_s(cell.slices[unit.begin]);
+    const std::size_t first = unit.first_equal;
+    if (!chunk_done[first]) {
+      if (unit.half_shift_of >= 0 && chunk_done[unit.half_shift_of]) {
+        chunk_s[first] = half_period_shift(chunk_s[unit.half_shift_of], M);
+      } else {
+        SMatrix chunk = slice_s(cell.slices[unit.begin]);
+        for (std::size_t k = unit.begin + 1; k < unit.end; ++k) chunk = star(chunk, slice_s(cell.slices[k]));
+        chunk_s[first] = std::move(chunk);
+      }
+      chunk_done[first] = true;
     }
-    if (it == chunks.end()) {
-      SMatrix chunk = slice_s(cell.slices[i]);
-      for (std::size_t k = i + 1; k < j; ++k) chunk = star(chunk, slice_s(cell.slices[k]));
-      it = chunks.emplace(std::move(key), std::move(chunk)).first;
-    }
-    total = star(total, it->second);
-    i = j;
+    return chunk_s[first];
+  };
+  const SMatrix top_s = half_space(top, V0, true), bottom_s = half_space(bottom, V0, false);
+  SMatrix total;
+  if (s.transmission) {
+    total = top_s;
+    for (std::size_t u = 0; u < units.size(); ++u) total = star(total, unit_s(u));
+    total = star(total, bottom_s);
+  } else {
+    // Only the reflection is needed: recurse R upward from the substrate (one LU and three products
+    // per unit instead of a star product's two LUs and eight products).
+    Mat R = bottom_s.s11;
+    for (std::size_t u = units.size(); u-- > 0;) R = reflect_over(unit_s(u), R);
+    total.s11 = reflect_over(top_s, R);
   }
-  total = star(total, half_space(bottom, V0, false));
 
   // ŝ = ω_i,e × n̂_e, n̂_e = (0, 0, −1); R ŷ = −ŷ at exactly normal incidence (crystal_mapping.cpp).
   double sx = st, sy = ct * sp;
@@ -255,7 +381,8 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, 
     c(M) = e_inc[q][0];
     c(n + M) = e_inc[q][1];
     const double f_inc = z_flux(e_inc[q], k_inc);
-    const Vec cr = total.s11 * c, ct_ = total.s21 * c;
+    const Vec cr = total.s11 * c;
+    const Vec ct_ = s.transmission ? Vec(total.s21 * c) : Vec::Zero(2 * n);
     for (int m = 0; m < n; ++m) {
       const Complex gr = top.gamma(m), gt = bottom.gamma(m);
       const Vec3 er = wave_field(cr(m), cr(n + m), kx(m), ky, -gr);
@@ -266,7 +393,7 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, 
         r.has_other_orders = true;
       }
       const Vec3 et = wave_field(ct_(m), ct_(n + m), kx(m), ky, gt);
-      if (std::abs(gt.imag()) < 1e-9) r.transmitted[q] += z_flux(et, {kx(m), ky, gt}) / f_inc;
+      if (s.transmission && std::abs(gt.imag()) < 1e-9) r.transmitted[q] += z_flux(et, {kx(m), ky, gt}) / f_inc;
       if (m == M) {
         J[0][q] = dot(er, s_hat);
         J[1][q] = dot(cross(k_ref, er), s_hat);

@@ -20,12 +20,17 @@ namespace plumage::rcwa {
 struct SolverSettings {
   int harmonics = 10;    // orders −M..M (2M + 1 Fourier harmonics)
   bool li_rule = true;   // inverse rule for E_x (false: Laurent's rule everywhere)
+  // Diagnostics / checks only (the builder leaves both false): solve the 2n × 2n coupled mode
+  // problem instead of the two decoupled n × n ones, and carry the full S-matrix recursion so that
+  // EntryResult::transmitted is filled (otherwise only the reflection matrix is recursed).
+  bool coupled_eigenproblem = false;
+  bool transmission = false;
 };
 
 struct EntryResult {
   JonesReflection jones;           // specular order, (s, p) basis of local_reflection.hpp
   double reflected[2] = {0, 0};    // total reflected power (all orders), s / p incident
-  double transmitted[2] = {0, 0};  // total transmitted power into the substrate, s / p incident
+  double transmitted[2] = {0, 0};  // total transmitted power into the substrate (settings.transmission)
   double other_orders[2] = {0, 0}; // reflected power in propagating orders m ≠ 0, s / p incident
   bool has_other_orders = false;   // a propagating reflected order m ≠ 0 exists
 };

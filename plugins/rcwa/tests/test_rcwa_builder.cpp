@@ -2,8 +2,15 @@
 // a small table in the (s, p) basis with the FDTD's query rules, the rcwa.other_orders warning,
 // and the memory estimate.
 #include <catch2/catch.hpp>
+#include <unistd.h>
+
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+
+#include "builder.hpp"
 
 #include "plumage/config_document.hpp"
 #include "plumage/diagnostics.hpp"
@@ -65,4 +72,36 @@ TEST_CASE("rcwa builder: a small table, its memory estimate and the other-orders
   const auto w2 = diagnostics().warnings();
   CHECK(std::any_of(w2.begin(), w2.end(), [](const Warning& x) { return x.code == "rcwa.other_orders"; }));
   CHECK(wide.metadata().notes.find("[rcwa.other_orders]") != std::string::npos);
+}
+
+TEST_CASE("rcwa builder: a crystal's rcwa: section sets its production settings", "[rcwa]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("plumage-test-rcwa-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string base = std::string(PLUMAGE_SOURCE_DIR) + "/configs/crystals/mallard-green.yaml";
+  std::ifstream in(base);
+  const std::string yaml((std::istreambuf_iterator<char>(in)), {});
+  auto with_section = [&](const std::string& name, const std::string& section) {
+    const fs::path p = dir / name;
+    std::ofstream(p) << yaml << "  rcwa: " << section << "\n";
+    return load_crystal_cell(p.string());
+  };
+  const CrystalCell cell = with_section("good.yaml", "{harmonics: 7, slices_per_row: 24}");
+  const rcwa::CellSettings c = rcwa::cell_settings(cell);
+  rcwa::BuilderParams production, preview, explicit_options;
+  preview.fidelity = rcwa::BuilderParams::Fidelity::preview;
+  explicit_options.harmonics = 4;
+  CHECK(rcwa::build_settings(production, c).solver.harmonics == 7);
+  CHECK(rcwa::build_settings(production, c).slices_per_row == 24);
+  CHECK(rcwa::build_settings(preview, c).solver.harmonics == 3);  // preview keeps its preset
+  CHECK(rcwa::build_settings(explicit_options, c).solver.harmonics == 4);  // builder options win
+  CHECK(rcwa::build_settings(production, rcwa::cell_settings(mallard())).solver.harmonics == 5);
+  const auto* entry = registry().find("table_builder", "rcwa");
+  REQUIRE(entry);
+  auto builder = registry().create_named<TableBuilder>("rcwa", ConfigDocument::parse("{}", "b.yaml").root(),
+                                                       registry().context());
+  CHECK_NOTHROW(builder->check_cell(cell));
+  CHECK_THROWS_AS(builder->check_cell(with_section("bad.yaml", "{harmonic: 7}")), ConfigError);
+  CHECK_THROWS_AS(builder->check_cell(with_section("range.yaml", "{slices_per_row: 999}")), ConfigError);
+  fs::remove_all(dir);
 }

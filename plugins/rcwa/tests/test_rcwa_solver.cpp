@@ -72,7 +72,9 @@ TEST_CASE("rcwa: a layered keratin/melanin film equals the closed-form multilaye
       {Material::keratin(), 120.0}, {Material::melanin(), 80.0}, {Material::keratin(), 95.0}, {Material::melanin(), 80.0}};
   const SlicedCell cell = film(layers, 190.0);
   for (double lambda : {420.0, 550.0, 690.0}) {
-    for (auto [theta, phi] : {std::pair{0.0, 0.0}, {0.4, 0.6}, {1.1, 0.3}, {0.2, 1.3}}) {
+    // ... including cos θ cos φ = 0.25 and 0.1 (near grazing, where the FDTD is continued, NOTES.md §4)
+    for (auto [theta, phi] : {std::pair{0.0, 0.0}, {0.4, 0.6}, {1.1, 0.3}, {0.2, 1.3}, {std::acos(0.25), 0.0},
+                              {1.0, std::acos(0.1 / std::cos(1.0))}}) {
       const EntryResult r = solve_entry(cell, lambda, theta, phi, {.harmonics = 5, .li_rule = true});
       std::vector<FilmLayer> ref;
       for (const auto& [m, d] : layers) ref.push_back({m.index(lambda) * m.index(lambda), d});
@@ -95,7 +97,8 @@ TEST_CASE("rcwa: R + T = 1 for a lossless crystal, A >= 0 with melanin", "[rcwa]
   for (double lambda : {400.0, 560.0}) {
     for (auto [theta, phi] : {std::pair{0.0, 0.0}, {0.5, 0.7}, {1.0, 1.2}}) {
       for (bool li : {true, false}) {
-        const EntryResult r = solve_entry(lossless, lambda, theta, phi, {.harmonics = 8, .li_rule = li});
+        const EntryResult r =
+            solve_entry(lossless, lambda, theta, phi, {.harmonics = 8, .li_rule = li, .transmission = true});
         CAPTURE(lambda, theta, phi, li, r.reflected[0], r.transmitted[0], r.reflected[1], r.transmitted[1]);
         CHECK(std::abs(r.reflected[0] + r.transmitted[0] - 1.0) < 1e-10);
         CHECK(std::abs(r.reflected[1] + r.transmitted[1] - 1.0) < 1e-10);
@@ -106,7 +109,7 @@ TEST_CASE("rcwa: R + T = 1 for a lossless crystal, A >= 0 with melanin", "[rcwa]
   c.core_diameter_nm = 90;
   const SlicedCell lossy = slice_crystal(c, 6);
   for (double lambda : {400.0, 560.0, 700.0}) {
-    const EntryResult r = solve_entry(lossy, lambda, 0.5, 0.7, {.harmonics = 8, .li_rule = true});
+    const EntryResult r = solve_entry(lossy, lambda, 0.5, 0.7, {.harmonics = 8, .li_rule = true, .transmission = true});
     for (int q = 0; q < 2; ++q) {
       const double absorbed = 1.0 - r.reflected[q] - r.transmitted[q];
       CAPTURE(lambda, q, absorbed);
@@ -174,4 +177,24 @@ TEST_CASE("rcwa: the other_orders power appears only where a second order propag
   CHECK(normal.other_orders[0] == 0.0);
   CHECK(oblique.has_other_orders);
   CHECK(oblique.other_orders[0] + oblique.other_orders[1] > 1e-6);
+}
+
+TEST_CASE("rcwa: decoupled n x n modes and the reflection-only recursion equal the coupled full recursion",
+          "[rcwa]") {
+  // The fast path (two planar eigenproblems, R recursed upward, repeated rows reused) against the
+  // 2n x 2n coupled eigenproblem with full Redheffer star products, on three cell families.
+  for (const char* name : {"mallard-green", "magpie-blue", "peacock-cyan"}) {
+    const CrystalCell c = load_crystal_cell(std::string(PLUMAGE_SOURCE_DIR) + "/configs/crystals/" + name + ".yaml");
+    const SlicedCell sliced = slice_crystal(c, 6);
+    for (auto [theta, phi] : {std::pair{0.0, 0.0}, {0.6, 0.0}, {0.0, 0.9}, {0.8, 1.1}, {1.3, 0.4}}) {
+      const SolverSettings fast{.harmonics = 5, .li_rule = true};
+      const SolverSettings full{.harmonics = 5, .li_rule = true, .coupled_eigenproblem = true, .transmission = true};
+      const EntryResult a = solve_entry(sliced, 480.0, theta, phi, fast), b = solve_entry(sliced, 480.0, theta, phi, full);
+      CAPTURE(name, theta, phi, a.jones.ss, b.jones.ss, a.jones.pp, b.jones.pp);
+      CHECK(max_abs(a.jones, b.jones) < 1e-10);
+      CHECK(std::abs(a.reflected[0] - b.reflected[0]) < 1e-10);
+      CHECK(std::abs(a.reflected[1] - b.reflected[1]) < 1e-10);
+      CHECK(std::norm(a.jones.ss) > 1e-3);
+    }
+  }
 }
