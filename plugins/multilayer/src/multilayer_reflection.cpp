@@ -52,7 +52,10 @@ class IndexAtWavelength {
 class CosAlpha {
  public:
   double operator()(const LocalIncidence& incidence) {
-    if (incidence.theta_rad != theta_rad_) theta_rad_ = incidence.theta_rad, cos_theta_ = std::cos(theta_rad_);
+    if (incidence.theta_rad != theta_rad_) {
+      theta_rad_ = incidence.theta_rad;
+      cos_theta_ = std::cos(theta_rad_);
+    }
     return cos_theta_ * std::cos(incidence.phi_local_rad);
   }
 
