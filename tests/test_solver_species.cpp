@@ -256,3 +256,44 @@ TEST_CASE("mirror symmetry: a mirrored barbule mirrors its pattern", "[solver][s
     }
   }
 }
+
+namespace {
+
+// Passes requests through to the species' own reflection and keeps their local cos α.
+class RecordingReflection final : public LocalReflection {
+ public:
+  explicit RecordingReflection(std::shared_ptr<const LocalReflection> inner) : inner_(std::move(inner)) {}
+  void reflect(std::span<const Request> requests, std::span<JonesReflection> out) const override {
+    for (const Request& r : requests) cos_alpha.push_back(r.incidence.cos_alpha());
+    inner_->reflect(requests, out);
+  }
+  mutable std::vector<double> cos_alpha;
+
+ private:
+  std::shared_ptr<const LocalReflection> inner_;
+};
+
+}  // namespace
+
+// Points facing away from the light carry no current, so the solver does not ask for their
+// reflection (issue 26); every point it asks for is lit (cos α above sin 1e-3 up to rounding),
+// and at a near-grazing azimuth fewer points are asked for than at normal incidence.
+TEST_CASE("the local reflection is requested only at lit points", "[solver][species]") {
+  const auto species = layered_species();
+  const auto dirs = pattern_directions(400).phi_o_rad;
+  for (const auto& s : species) {
+    auto recorder = std::make_shared<RecordingReflection>(s.reflection);
+    auto prepared = s.solver->prepare(s.structure->generate(0), recorder);
+    const double normal[1] = {0.0};
+    s.solver->solve(*prepared, 550.0, 0.0, normal, dirs);
+    const std::size_t lit_at_normal = recorder->cos_alpha.size();
+    recorder->cos_alpha.clear();
+    const double grazing[2] = {std::acos(0.05), -std::acos(0.05)};
+    const auto ff = s.solver->solve(*prepared, 550.0, std::acos(0.5), grazing, dirs);
+    INFO(s.species << ": " << lit_at_normal << " points lit at normal incidence, "
+                   << recorder->cos_alpha.size() << " requests for two grazing azimuths");
+    CHECK(recorder->cos_alpha.size() < 2 * lit_at_normal);
+    CHECK(*std::min_element(recorder->cos_alpha.begin(), recorder->cos_alpha.end()) > std::sin(1e-3) - 1e-9);
+    for (const auto& f : ff) CHECK(f.incident_power[0] > 0.0);
+  }
+}

@@ -45,34 +45,49 @@ struct PreparedTop final : ScatteringSolver::Prepared {
   std::size_t instance_index = 0;
 };
 
+double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
 // Jones matrices for every incident azimuth at every node ([a·nodes + m]) or, when the
-// reflection is sub-sampled, at every sub-sample ([a·samples + f]).
+// reflection is sub-sampled, at every sub-sample ([a·samples + f]). Points that face away from
+// the light carry no current (point_currents) and their reflection is never read: they are not
+// requested and stay zero (issue 26). The test is point_currents' with a margin of 1e-12, so
+// that a different rounding of the same dot product (FMA contraction) cannot skip a point that
+// point_currents lights.
 std::vector<JonesReflection> local_reflection(const PreparedTop& top, double lambda_nm, double theta_i_rad,
                                               std::span<const double> phi_i_rad) {
   const bool sub = top.samples > 1;
   const std::vector<Vec2>& normals = sub ? top.sample_normals : top.normals;
   const std::vector<LayerProfile>& profiles = sub ? top.sample_profiles : top.profiles;
   const std::size_t points = normals.size();
-  std::vector<LocalReflection::Request> requests(points * phi_i_rad.size());
+  const double ct = std::cos(theta_i_rad), st = std::sin(theta_i_rad);
+  const double lit = std::sin(kGrazingCutoff) - 1e-12;
+  thread_local std::vector<LocalReflection::Request> requests;
+  thread_local std::vector<std::size_t> where;  // index into the result of each request
+  thread_local std::vector<JonesReflection> lit_jones;
+  requests.clear();
+  where.clear();
   thread_local std::vector<double> psi;  // normal azimuths, once for all incident azimuths
   psi.resize(points);
   for (std::size_t m = 0; m < points; ++m) psi[m] = std::atan2(normals[m].x, normals[m].z);
   for (std::size_t a = 0; a < phi_i_rad.size(); ++a) {
+    const Vec3 w_i{ct * std::sin(phi_i_rad[a]), st, ct * std::cos(phi_i_rad[a])};  // as in solve()
     for (std::size_t m = 0; m < points; ++m) {
-      requests[a * points + m] = {lambda_nm, {theta_i_rad, phi_i_rad[a] - psi[m]},
-                                  profiles.empty() ? nullptr : &profiles[m]};
+      if (dot3(w_i, {normals[m].x, 0.0, normals[m].z}) <= lit) continue;
+      requests.push_back({lambda_nm, {theta_i_rad, phi_i_rad[a] - psi[m]},
+                          profiles.empty() ? nullptr : &profiles[m]});
+      where.push_back(a * points + m);
     }
   }
-  std::vector<JonesReflection> jones(requests.size());
-  top.reflection->reflect(requests, jones);
+  lit_jones.resize(requests.size());
+  top.reflection->reflect(requests, lit_jones);
+  std::vector<JonesReflection> jones(points * phi_i_rad.size());
+  for (std::size_t i = 0; i < requests.size(); ++i) jones[where[i]] = lit_jones[i];
   return jones;
 }
 
 [[gnu::always_inline]] inline Vec3 cross3(const Vec3& a, const Vec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-
 [[gnu::always_inline]] inline CVec3 cross3(const Vec3& a, const CVec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
@@ -164,7 +179,6 @@ void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, 
                                         incident_polarization(1, incident)};
   const bool with_lossless = amplitudes.cols() == 24;
   const int variants = with_lossless ? 2 : 1;
-  amplitudes.setZero();
   incident_power = {0.0, 0.0};
   const auto k = static_cast<std::size_t>(top.samples);
   PointCurrents point[2]{};
@@ -200,8 +214,11 @@ void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, 
         weights += w;
       }
     }
-    if (!(weights > 0.0)) continue;
     const auto row = static_cast<Eigen::Index>(m);
+    if (!(weights > 0.0)) {  // unlit: a zero row (only these rows are zeroed, not the matrix)
+      amplitudes.row(row).setZero();
+      continue;
+    }
     for (int v = 0; v < variants; ++v) {
       const double weight = top.window[m] * (v == 1 ? 1.0 : top.regularity[m]) / weights;
       for (int p = 0; p < 2; ++p) {

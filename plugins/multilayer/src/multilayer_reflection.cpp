@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -45,13 +46,30 @@ class IndexAtWavelength {
   Complex keratin_, melanin_;
 };
 
+// cos α = cos θ·cos φ_local (LocalIncidence::cos_alpha, the same product), with cos θ kept for
+// the next request: a solver's batch shares one θ (issue 26: one libm cos per request instead
+// of two).
+class CosAlpha {
+ public:
+  double operator()(const LocalIncidence& incidence) {
+    if (incidence.theta_rad != theta_rad_) {
+      theta_rad_ = incidence.theta_rad;
+      cos_theta_ = std::cos(theta_rad_);
+    }
+    return cos_theta_ * std::cos(incidence.phi_local_rad);
+  }
+
+ private:
+  double theta_rad_ = std::numeric_limits<double>::quiet_NaN();  // NaN ≠ every θ: first call computes
+  double cos_theta_ = 0.0;
+};
+
 // sin²α in the ambient medium, which must not absorb.
-double ambient_sin2(const Complex& ambient, const LocalIncidence& incidence, const LayerProfile& p) {
+double ambient_sin2(const Complex& ambient, double cos_alpha, const LayerProfile& p) {
   if (ambient.imag() != 0.0) {
     throw Error("multilayer: the ambient medium must not absorb (" + p.ambient.name() + ")");
   }
-  const double c = incidence.cos_alpha();
-  return ambient.real() * ambient.real() * std::max(0.0, 1.0 - c * c);
+  return ambient.real() * ambient.real() * std::max(0.0, 1.0 - cos_alpha * cos_alpha);
 }
 
 const LayerProfile& profile_of(const LocalReflection::Request& r) {
@@ -75,6 +93,7 @@ void MultilayerReflection::reflect(std::span<const Request> requests,
                                    std::span<JonesReflection> out) const {
   if (out.size() < requests.size()) throw Error("multilayer: output span shorter than requests");
   IndexAtWavelength index_of;
+  CosAlpha cos_alpha;
   std::vector<Complex> index;
   std::vector<double> thickness;
   // One request through the scalar recursion.
@@ -92,7 +111,7 @@ void MultilayerReflection::reflect(std::span<const Request> requests,
     index.back() = index_of(p.substrate);
     try {
       const StackReflection s =
-          reflect_stack(index, thickness, r.lambda_nm, ambient_sin2(index.front(), r.incidence, p));
+          reflect_stack(index, thickness, r.lambda_nm, ambient_sin2(index.front(), cos_alpha(r.incidence), p));
       return JonesReflection{s.r_s, {0.0, 0.0}, {0.0, 0.0}, s.r_p};
     } catch (const Error& e) {
       rethrow_with_context(e, r);
@@ -130,7 +149,7 @@ void MultilayerReflection::reflect(std::span<const Request> requests,
         const Complex sub = index_of(p.substrate);
         eps[(layers + 1) * kLanes + l] = sub * sub;
         k0[l] = 2.0 * 3.14159265358979323846 / r.lambda_nm;
-        sin2[l] = ambient_sin2(ambient, r.incidence, p);
+        sin2[l] = ambient_sin2(ambient, cos_alpha(r.incidence), p);
       }
       try {
         reflect_stack_lanes(static_cast<int>(layers), eps.data(), lane_thickness.data(), k0, sin2, lane_out);

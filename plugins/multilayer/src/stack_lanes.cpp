@@ -14,10 +14,18 @@ namespace {
 constexpr int W = kLanes;
 static_assert(W == 4, "simd_math works on four doubles");
 
+// Lanes as GCC vectors, so that the recursion's arithmetic is vector code whatever the
+// auto-vectoriser decides (issue 26: the interface step's loop with selects and a division had
+// stayed scalar).
+using simd::v4d;
+using v4i = simd::v4i;
 struct LaneComplex {
-  double re[W];
-  double im[W];
+  v4d re;
+  v4d im;
 };
+
+inline v4d real_parts(const Complex* z) { return v4d{z[0].real(), z[1].real(), z[2].real(), z[3].real()}; }
+inline v4d imag_parts(const Complex* z) { return v4d{z[0].imag(), z[1].imag(), z[2].imag(), z[3].imag()}; }
 
 // q = sqrt(ε − sin²α), Im q ≥ 0; a medium exactly at its critical angle is moved off zero to
 // (1 + i)·1e-20·√|ε| as in the scalar path.
@@ -40,20 +48,37 @@ inline void normal_wavenumber(const Complex* eps, const double* sin2, LaneComple
   }
 }
 
-inline void multiply(const LaneComplex& a, const LaneComplex& b, LaneComplex& out) {
-  for (int l = 0; l < W; ++l) {
-    const double r = a.re[l] * b.re[l] - a.im[l] * b.im[l];
-    const double i = a.re[l] * b.im[l] + a.im[l] * b.re[l];
-    out.re[l] = r;
-    out.im[l] = i;
+// q of the media already met in this stack: a medium whose ε equals, in every lane, one met
+// before gets its q copied (same inputs, same bits). Bird stacks repeat few media (air ambient
+// and air gap, keratin cortices, alternating keratin/melanin), so most q are copies (issue 26).
+class WavenumberCache {
+ public:
+  void get(const Complex* eps, const double* sin2, LaneComplex& q) {
+    for (int k = 0; k < size_; ++k) {
+      bool same = true;
+      for (int l = 0; l < W; ++l) same &= (eps[l] == eps_[k][l]);
+      if (same) {
+        q = q_[k];
+        return;
+      }
+    }
+    normal_wavenumber(eps, sin2, q);
+    const int slot = size_ < kSlots ? size_++ : kSlots - 1;  // full: the last slot is replaced
+    for (int l = 0; l < W; ++l) eps_[slot][l] = eps[l];
+    q_[slot] = q;
   }
-}
+
+ private:
+  static constexpr int kSlots = 4;
+  int size_ = 0;
+  Complex eps_[kSlots][W];
+  LaneComplex q_[kSlots];
+};
 
 inline void multiply(const Complex* eps, const LaneComplex& q, LaneComplex& out) {
-  for (int l = 0; l < W; ++l) {
-    out.re[l] = eps[l].real() * q.re[l] - eps[l].imag() * q.im[l];
-    out.im[l] = eps[l].real() * q.im[l] + eps[l].imag() * q.re[l];
-  }
+  const v4d er = real_parts(eps), ei = imag_parts(eps);
+  out.re = er * q.re - ei * q.im;
+  out.im = er * q.im + ei * q.re;
 }
 
 // One interface of the (1 + X, 1 − X) reduction (stack_solver.cpp): with A = aξ, B = bη,
@@ -63,42 +88,33 @@ inline void multiply(const Complex* eps, const LaneComplex& q, LaneComplex& out)
 template <bool kTop>
 inline void interface_step(const LaneComplex& a, const LaneComplex& b, LaneComplex& xi, LaneComplex& eta,
                            LaneComplex& gamma) {
-  for (int l = 0; l < W; ++l) {
-    const double Ar = a.re[l] * xi.re[l] - a.im[l] * xi.im[l], Ai = a.re[l] * xi.im[l] + a.im[l] * xi.re[l];
-    const double Br = b.re[l] * eta.re[l] - b.im[l] * eta.im[l], Bi = b.re[l] * eta.im[l] + b.im[l] * eta.re[l];
-    const bool same = a.re[l] == b.re[l] && a.im[l] == b.im[l];
-    double dr = Ar + Br, di = Ai + Bi;
-    dr = same ? 1.0 : dr;
-    di = same ? 0.0 : di;
-    const double inv = 1.0 / (dr * dr + di * di);
-    const double ir = dr * inv, ii = -di * inv;  // 1/D
-    if constexpr (kTop) {
-      const double nr = Ar - Br, ni = Ai - Bi;
-      gamma.re[l] = same ? 0.5 * (xi.re[l] - eta.re[l]) : nr * ir - ni * ii;
-      gamma.im[l] = same ? 0.5 * (xi.im[l] - eta.im[l]) : nr * ii + ni * ir;
-    }
-    const double ir2 = 2.0 * ir, ii2 = 2.0 * ii;  // 2/D
-    const double xr = Ar * ir2 - Ai * ii2, xim = Ar * ii2 + Ai * ir2;
-    const double er = Br * ir2 - Bi * ii2, eim = Br * ii2 + Bi * ir2;
-    xi.re[l] = same ? xi.re[l] : xr;
-    xi.im[l] = same ? xi.im[l] : xim;
-    eta.re[l] = same ? eta.re[l] : er;
-    eta.im[l] = same ? eta.im[l] : eim;
+  const v4d Ar = a.re * xi.re - a.im * xi.im, Ai = a.re * xi.im + a.im * xi.re;
+  const v4d Br = b.re * eta.re - b.im * eta.im, Bi = b.re * eta.im + b.im * eta.re;
+  const v4i same = (a.re == b.re) & (a.im == b.im);
+  const v4d dr = same ? simd::splat(1.0) : Ar + Br;
+  const v4d di = same ? simd::splat(0.0) : Ai + Bi;
+  const v4d inv = 1.0 / (dr * dr + di * di);
+  const v4d ir = dr * inv, ii = -di * inv;  // 1/D
+  if constexpr (kTop) {
+    const v4d nr = Ar - Br, ni = Ai - Bi;
+    gamma.re = same ? 0.5 * (xi.re - eta.re) : nr * ir - ni * ii;
+    gamma.im = same ? 0.5 * (xi.im - eta.im) : nr * ii + ni * ir;
   }
+  const v4d ir2 = 2.0 * ir, ii2 = 2.0 * ii;  // 2/D
+  const v4d xr = Ar * ir2 - Ai * ii2, xim = Ar * ii2 + Ai * ir2;
+  const v4d er = Br * ir2 - Bi * ii2, eim = Br * ii2 + Bi * ir2;
+  xi.re = same ? xi.re : xr;
+  xi.im = same ? xi.im : xim;
+  eta.re = same ? eta.re : er;
+  eta.im = same ? eta.im : eim;
 }
 
 // ξ ← ξE + (1 − E), η ← ηE + (1 − E).
 inline void propagate(const LaneComplex& e, const LaneComplex& f, LaneComplex& xi, LaneComplex& eta) {
-  for (int l = 0; l < W; ++l) {
-    const double xr = xi.re[l] * e.re[l] - xi.im[l] * e.im[l] + f.re[l];
-    const double xim = xi.re[l] * e.im[l] + xi.im[l] * e.re[l] + f.im[l];
-    const double er = eta.re[l] * e.re[l] - eta.im[l] * e.im[l] + f.re[l];
-    const double eim = eta.re[l] * e.im[l] + eta.im[l] * e.re[l] + f.im[l];
-    xi.re[l] = xr;
-    xi.im[l] = xim;
-    eta.re[l] = er;
-    eta.im[l] = eim;
-  }
+  const v4d xr = xi.re * e.re - xi.im * e.im + f.re, xim = xi.re * e.im + xi.im * e.re + f.im;
+  const v4d er = eta.re * e.re - eta.im * e.im + f.re, eim = eta.re * e.im + eta.im * e.re + f.im;
+  xi = {xr, xim};
+  eta = {er, eim};
 }
 
 // expm1(x) for x ≤ 0: Taylor series to x^12/12! on [−0.25, 0] (relative truncation
@@ -118,27 +134,18 @@ inline simd::v4d expm1_nonpositive(simd::v4d x, simd::v4d ex) {
 // when a phase exceeds the polynomial reduction range.
 inline bool round_trip(const double* k0_per_nm, const double* d, const LaneComplex& q, LaneComplex& e,
                        LaneComplex& one_minus_e) {
-  double psi[W], decay[W];
+  const v4d k0d = v4d{k0_per_nm[0], k0_per_nm[1], k0_per_nm[2], k0_per_nm[3]} * v4d{d[0], d[1], d[2], d[3]};
+  const v4d psi = k0d * q.re, x = -2.0 * k0d * q.im;
   bool out_of_range = false;
-  for (int l = 0; l < W; ++l) {
-    const double k0d = k0_per_nm[l] * d[l];
-    psi[l] = k0d * q.re[l];
-    decay[l] = -2.0 * k0d * q.im[l];
-  }
   for (int l = 0; l < W; ++l) out_of_range |= !(std::abs(psi[l]) <= simd::kMaxReducibleArgument);
   simd::v4d s, c;
-  simd::sincos(simd::v4d{psi[0], psi[1], psi[2], psi[3]}, s, c);
-  const simd::v4d x{decay[0], decay[1], decay[2], decay[3]};
+  simd::sincos(psi, s, c);
   const simd::v4d m = simd::exp_nonpositive(x);
   const simd::v4d em1 = expm1_nonpositive(x, m);
   const simd::v4d mm = x > -0.25 ? 1.0 + em1 : m;  // as the scalar path: e^x from expm1 near 0
   const simd::v4d s2 = 2.0 * s * s, sc = 2.0 * s * c;
-  for (int l = 0; l < W; ++l) {
-    e.re[l] = mm[l] * (1.0 - s2[l]);
-    e.im[l] = mm[l] * sc[l];
-    one_minus_e.re[l] = -em1[l] + mm[l] * s2[l];
-    one_minus_e.im[l] = -mm[l] * sc[l];
-  }
+  e = {mm * (1.0 - s2), mm * sc};
+  one_minus_e = {-em1 + mm * s2, -mm * sc};
   return out_of_range;
 }
 
@@ -164,16 +171,14 @@ void reflect_stack_lanes(int layers, const Complex* eps, const double* thickness
   }
   LaneComplex gamma_s{}, gamma_p{}, q_below, q, ap, bp, e, f;
   LaneComplex xi_s, eta_s, xi_p, eta_p;  // 1 ± X per polarization; X = 0 below the bottom
-  for (int l = 0; l < W; ++l) {
-    xi_s.re[l] = eta_s.re[l] = xi_p.re[l] = eta_p.re[l] = 1.0;
-    xi_s.im[l] = eta_s.im[l] = xi_p.im[l] = eta_p.im[l] = 0.0;
-  }
+  xi_s = eta_s = xi_p = eta_p = {simd::splat(1.0), simd::splat(0.0)};
   bool out_of_range = false;
-  normal_wavenumber(eps + (layers + 1) * W, sin2_alpha, q_below);
+  WavenumberCache wavenumbers;
+  wavenumbers.get(eps + (layers + 1) * W, sin2_alpha, q_below);
   const Complex* eps_below = eps + (layers + 1) * W;
   for (int j = layers + 1; j-- > 1;) {
     const Complex* eps_j = eps + j * W;
-    normal_wavenumber(eps_j, sin2_alpha, q);
+    wavenumbers.get(eps_j, sin2_alpha, q);
     interface_step<false>(q, q_below, xi_s, eta_s, gamma_s);
     multiply(eps_below, q, ap);
     multiply(eps_j, q_below, bp);
@@ -186,7 +191,7 @@ void reflect_stack_lanes(int layers, const Complex* eps, const double* thickness
     q_below = q;
   }
   // The top interface (ambient over layer 1), with Γ.
-  normal_wavenumber(eps, sin2_alpha, q);
+  wavenumbers.get(eps, sin2_alpha, q);
   interface_step<true>(q, q_below, xi_s, eta_s, gamma_s);
   multiply(eps_below, q, ap);
   multiply(eps, q_below, bp);
