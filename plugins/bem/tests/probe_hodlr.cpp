@@ -1,7 +1,7 @@
 // Probe: preconditioners of method hmatrix on a species barbule segment (development tool, not a
 // test; NOTES.md §5 "H-LU"). Usage:
 //   bem_probe_hodlr <species.yaml> <width_um> <lambda_nm> <ppw> <near_field|hodlr> [nrhs] [dense 0/1]
-// env: HTOL (hodlr_tolerance), HLEAF (hodlr_leaf_size), HRANK (hodlr_max_rank), GTOL (GMRES, 1e-6),
+// env: GMAX (GMRES iterations per right-hand side, 1500), HTOL (hodlr_tolerance), HLEAF (hodlr_leaf_size), HRANK (hodlr_max_rank), GTOL (GMRES, 1e-6),
 // THETA (rad), LEAF (H-matrix leaf_size). Prints setup and solve times (wall and process CPU),
 // iterations per right-hand side, peak RSS, and with dense = 1 the far-field intensity against dense LU.
 #include <sys/resource.h>
@@ -60,6 +60,7 @@ int main(int argc, char** argv) {
   o.points_per_wavelength = ppw;
   o.method = BemOptions::Method::hmatrix;
   o.gmres_tolerance = env("GTOL", 1e-6);
+  o.gmres_max_iterations = static_cast<int>(env("GMAX", 1500));
   o.hmatrix.leaf_size = static_cast<int>(env("LEAF", o.hmatrix.leaf_size));
   if (pre == "hodlr") o.hmatrix.preconditioner = HMatrixOptions::Preconditioner::hodlr;
   o.hodlr.tolerance = env("HTOL", o.hodlr.tolerance);
