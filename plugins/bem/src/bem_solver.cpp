@@ -101,6 +101,10 @@ static void build_hodlr(System& sys, const BemOptions& options) {
   const std::string step = step_name("HODLR factorisation", sys.mesh, sys.lambda_nm);
   report_step(step, 0, 0);
   sys.hodlr->factorise(row, column, [&](int done, int total) { report_step(step, done, total, "levels"); });
+  const HodlrStats& st = sys.hodlr->stats();
+  report_step(step, st.levels + 1, st.levels + 1,
+              format("levels; ranks mean %.1f max %d, %d blocks at the rank cap, %.2f GB", st.mean_rank, st.max_rank,
+                     st.capped_blocks, st.memory_gb));
 }
 
 std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm, double theta,
