@@ -1,6 +1,6 @@
 // Rows and columns of the H-matrix operator Z = N + Σ blocks (hmatrix.hpp), restricted to a window
 // of a permuted index order: the entry oracle of the HODLR preconditioner (hodlr.hpp; NOTES.md §5
-// "H-LU"). An entry is exactly what HMatrix::apply multiplies by: the near field's value, or an
+// "Preconditioner hodlr"). An entry is exactly what HMatrix::apply multiplies by: the near field's value, or an
 // ACA block's kernels U V expanded through the Galerkin algebra of local_pair (as to_dense_single
 // does for the whole matrix). A row of a window of width w costs O(w + blocks on the row's
 // segments), not O(N): blocks and segments are skipped when they lie outside the window's box.

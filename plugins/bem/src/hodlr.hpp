@@ -1,5 +1,5 @@
 // Hierarchical LU of the whole PMCHWT operator with weak admissibility (HODLR; issue 28 Deliver 1,
-// NOTES.md §5 "H-LU"), the preconditioner `hodlr` of method hmatrix.
+// NOTES.md §5 "Preconditioner hodlr"), the preconditioner `hodlr` of method hmatrix.
 //
 // The unknowns are ordered by a geometric bisection of their positions (vertex of their tent) into
 // a binary tree; every off-diagonal block of a node, Z(a, b) and Z(b, a) for its children a, b, is

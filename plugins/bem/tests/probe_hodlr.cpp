@@ -1,5 +1,5 @@
 // Probe: preconditioners of method hmatrix on a species barbule segment (development tool, not a
-// test; NOTES.md §5 "H-LU"). Usage:
+// test; NOTES.md §5 "Preconditioner hodlr"). Usage:
 //   bem_probe_hodlr <species.yaml> <width_um> <lambda_nm> <ppw> <near_field|hodlr> [nrhs] [dense 0/1]
 // env: GMAX (GMRES iterations per right-hand side, 1500), HTOL (hodlr_tolerance), HLEAF (hodlr_leaf_size), HRANK (hodlr_max_rank), GTOL (GMRES, 1e-6),
 // THETA (rad), LEAF (H-matrix leaf_size). Prints setup and solve times (wall and process CPU),

@@ -1,6 +1,8 @@
-// HODLR preconditioner of method hmatrix (hodlr.hpp, hmatrix_entries.hpp; NOTES.md §5 "H-LU"):
+// HODLR preconditioner of method hmatrix (hodlr.hpp, hmatrix_entries.hpp; NOTES.md §5 "Preconditioner hodlr"):
 // the entry oracle against the dense matrix, the factor's inverse against the dense matrix, and
-// GMRES with it against dense LU on small multi-body problems.
+// GMRES with it against dense LU on small multi-body problems, and its independence of the thread count.
+#include <tbb/global_control.h>
+
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <random>
@@ -143,4 +145,22 @@ TEST_CASE("bem hodlr: the factor inverts the operator to its tolerance; GMRES wi
       for (int it : its) CHECK(it < near_field_iterations);
     }
   }
+}
+
+TEST_CASE("bem hodlr: the factor does not depend on the thread count") {
+  BemOptions o;
+  o.method = BemOptions::Method::hmatrix;
+  o.hmatrix.preconditioner = HMatrixOptions::Preconditioner::hodlr;
+  o.hodlr.leaf_size = 64;
+  o.points_per_wavelength = 12.0;
+  const auto prep = prepare_geometry(slab_with_rods());
+  Eigen::VectorXcd y[2];
+  for (int threads = 1; threads <= 2; ++threads) {
+    const tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    const auto sys = build_system(prep->geometry, 550.0, deg_to_rad(30.0), o);
+    Eigen::VectorXcd x(sys->mesh.unknowns());
+    for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = {std::cos(0.37 * i), std::sin(0.11 * i)};
+    sys->hodlr->apply(x, y[threads - 1]);
+  }
+  CHECK((y[0] - y[1]).cwiseAbs().maxCoeff() == 0.0);
 }
