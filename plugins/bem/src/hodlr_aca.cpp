@@ -14,6 +14,9 @@ namespace {
 using Mat = Eigen::MatrixXcd;
 using Vec = Eigen::VectorXcd;
 
+// Rows and columns checked when the ACA stopping test passes.
+constexpr int kChecks = 8;
+
 // U V = Qu (Ru Rvᵀ) Qvᵀ; the small core's SVD truncated where the dropped singular values carry
 // a relative Frobenius share ≤ eps.
 void recompress(Mat& U, Mat& V, double eps) {
@@ -82,15 +85,23 @@ bool aca_block(const HodlrLU::Entries& row, const HodlrLU::Entries& column, cons
     norm2 = std::max(norm2 + uu * vv + cross, uu * vv);
     us.push_back(c), vs.push_back(std::move(v));
     if (std::sqrt(uu * vv) <= eps * std::sqrt(norm2)) {
-      // Stopping test passed: check a few unused rows spread over the block (ACA can miss row
-      // groups, e.g. the near-field band along the cut); continue from the worst if needed.
+      // Stopping test passed: check unused rows and columns spread over the block (ACA can miss
+      // row or column groups, e.g. the near-field band along the cut); continue from the worst.
       int worst = -1;
-      double worst_norm = eps * eps * norm2 / std::max(1, m);
-      for (int t = 1; t <= 4; ++t) {
-        const int ii = next_unused((t * m) / 5);
+      double worst_norm = eps * eps * norm2 / std::max(1, std::min(m, n));
+      for (int t = 1; t <= kChecks; ++t) {
+        const int ii = next_unused((t * m) / (kChecks + 1));
         if (ii < 0) break;
         residual_row(ii, r);
         if (r.squaredNorm() > worst_norm) worst_norm = r.squaredNorm(), worst = ii;
+      }
+      for (int t = 1; t <= kChecks; ++t) {
+        const int jj = (t * n) / (kChecks + 1);
+        column(cols.begin + jj, rows, c);
+        for (std::size_t l = 0; l < us.size(); ++l) c -= vs[l][jj] * us[l];
+        Eigen::Index ii = 0;
+        for (int q = 0; q < m; ++q) if (used[q]) c[q] = 0;  // rows already taken are exact
+        if (c.squaredNorm() > worst_norm) worst_norm = c.squaredNorm(), c.cwiseAbs().maxCoeff(&ii), worst = int(ii);
       }
       if (worst < 0) { converged = true; break; }
       i = worst;
