@@ -32,8 +32,8 @@ struct IndexBox {
 };
 
 struct HodlrOptions {
-  // relative Frobenius accuracy of each off-diagonal block: 1e-4 measured (NOTES.md §5: 6 iterations on
-  // the slab with rods where 1e-2 needs 76 and the near-field LU 36; flat 10-30 ppw on the 0.3 um segment)
+  // relative Frobenius accuracy of each off-diagonal block: 1e-4 measured (NOTES.md §5: 5-6 iterations on
+  // the slab with rods where 1e-2 needs 77 and the near-field LU 36; 2-4 at 10-30 ppw on the 0.3 um segment)
   double tolerance = 1e-4;
   int leaf_size = 256;      // unknowns per dense leaf
   int max_rank = 400;       // cap per off-diagonal block (bounds the memory, see memory_bound_bytes)
