@@ -23,6 +23,11 @@ const std::vector<std::pair<std::string_view, Method>>& methods() {
 
 // A field of the nested HMatrixOptions, for the table (param_table.hpp: any callable T& -> V&).
 template <class V>
+auto hodlr_field(V HodlrOptions::*member) {
+  return [member](BemOptions& o) -> V& { return o.hodlr.*member; };
+}
+
+template <class V>
 auto hmatrix_field(V HMatrixOptions::*member) {
   return [member](BemOptions& o) -> V& { return o.hmatrix.*member; };
 }
@@ -55,10 +60,18 @@ ParamTable<BemOptions> make_table() {
               "method hmatrix: preconditioner = near-field entries of segments closer than factor * h (0: the "
               "whole near field)")
       .choice("preconditioner", hmatrix_field(&HMatrixOptions::preconditioner),
-              {{"near_field", Preconditioner::near_field}, {"dense_single", Preconditioner::dense_single}},
+              {{"near_field", Preconditioner::near_field}, {"dense_single", Preconditioner::dense_single},
+               {"hodlr", Preconditioner::hodlr}},
               h.preconditioner,
               "method hmatrix: near_field (sparse LU of the near field) | dense_single (LU of the whole operator "
-              "in complex<float>, 8 N^2 bytes: rod lattices where the near field does not precondition)")
+              "in complex<float>, 8 N^2 bytes: rod lattices where the near field does not precondition) | hodlr "
+              "(hierarchical LU of the whole operator, low-rank off-diagonal blocks)")
+      .number("hodlr_tolerance", hodlr_field(&HodlrOptions::tolerance), "1", d.hodlr.tolerance, Limits::positive(),
+              "preconditioner hodlr: relative accuracy of each low-rank off-diagonal block")
+      .integer("hodlr_leaf_size", hodlr_field(&HodlrOptions::leaf_size), "1", d.hodlr.leaf_size, Limits::positive(),
+               "preconditioner hodlr: unknowns per dense diagonal leaf")
+      .integer("hodlr_max_rank", hodlr_field(&HodlrOptions::max_rank), "1", d.hodlr.max_rank, Limits::positive(),
+               "preconditioner hodlr: rank cap per off-diagonal block (bounds the memory estimate)")
       .integer("max_dense_single_unknowns", &BemOptions::max_dense_single_unknowns, "1", d.max_dense_single_unknowns,
                Limits::positive(), "preconditioner dense_single: refuse larger systems (memory 8 N^2 bytes)")
       .number("gmres_tolerance", &BemOptions::gmres_tolerance, "1", d.gmres_tolerance, Limits::positive(),

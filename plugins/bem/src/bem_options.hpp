@@ -9,6 +9,7 @@
 #include <string_view>
 
 #include "hmatrix.hpp"
+#include "hodlr.hpp"
 #include "pair_integrals.hpp"
 #include "plumage/param_table.hpp"
 
@@ -41,6 +42,7 @@ struct BemOptions {
   // them to measure the quadrature error (NOTES.md §4).
   QuadratureOptions quadrature;
   HMatrixOptions hmatrix;
+  HodlrOptions hodlr;  // preconditioner hodlr of method hmatrix (hodlr.hpp)
   // Right-hand sides after the first start GMRES from the residual-minimising combination of all
   // earlier solutions (method gmres/hmatrix; NOTES.md §5).
   bool warm_start = true;

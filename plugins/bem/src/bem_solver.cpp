@@ -14,6 +14,7 @@
 #include "plumage/error.hpp"
 #include "plumage/memory_budget.hpp"
 #include "memory_estimate.hpp"
+#include "hmatrix_entries.hpp"
 #include "radiation.hpp"
 
 namespace plumage::bem {
@@ -91,6 +92,21 @@ std::shared_ptr<const BemPrepared> prepare_geometry(const CrossSection& section)
   return p;
 }
 
+// The HODLR preconditioner (hodlr.hpp) from the rows and columns of the H-matrix.
+static void build_hodlr(System& sys, const BemOptions& options) {
+  sys.hodlr = std::make_unique<HodlrLU>(unknown_positions(sys.mesh), options.hodlr);
+  const HMatrixEntries entries(*sys.hmatrix, sys.mesh, sys.media, sys.hodlr->perm());
+  const auto row = [&](int p, const IndexBox& w, Eigen::VectorXcd& out) { entries.row(p, w, out); };
+  const auto column = [&](int p, const IndexBox& w, Eigen::VectorXcd& out) { entries.column(p, w, out); };
+  const std::string step = step_name("HODLR factorisation", sys.mesh, sys.lambda_nm);
+  report_step(step, 0, 0);
+  sys.hodlr->factorise(row, column, [&](int done, int total) { report_step(step, done, total, "levels"); });
+  const HodlrStats& st = sys.hodlr->stats();
+  report_step(step, st.levels + 1, st.levels + 1,
+              format("levels; ranks mean %.1f max %d, %d blocks at the rank cap, %.2f GB", st.mean_rank, st.max_rank,
+                     st.capped_blocks, st.memory_gb));
+}
+
 std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm, double theta,
                                      const BemOptions& options, int rhs, int far_directions) {
   auto sys = std::make_unique<System>();
@@ -129,6 +145,8 @@ std::unique_ptr<System> build_system(const Geometry& geometry, double lambda_nm,
       const auto progress = [&](double f) { report_step(lu_step, 100.0 * f, 100.0, "% of the flops"); };
       report_step(lu_step, 0, 100.0, "% of the flops");
       sys->dense_single = std::make_unique<SinglePrecisionLU>(std::move(dense), 256, progress);
+    } else if (options.hmatrix.preconditioner == HMatrixOptions::Preconditioner::hodlr) {
+      build_hodlr(*sys, options);
     } else {
       report_step(step_name("sparse LU of the near field (preconditioner)", sys->mesh, lambda_nm), 0, 0);
       sys->near_field = std::make_unique<NearFieldLU>(sys->hmatrix->take_preconditioner_matrix());
@@ -170,6 +188,7 @@ Eigen::MatrixXcd System::solve(const Eigen::MatrixXcd& B, const BemOptions& opti
   };
   const Op M = [&](const Eigen::VectorXcd& in, Eigen::VectorXcd& out) {
     if (dense_single) dense_single->apply(in, out);
+    else if (hodlr) hodlr->apply(in, out);
     else near_field->apply(in, out);
   };
   const std::string gmres_step = step_name("GMRES", mesh, lambda_nm);
@@ -312,7 +331,13 @@ std::vector<FarField> BemSolver::solve(const Prepared& prepared, double lambda_n
           << " near_nnz " << st.near_nonzeros << " precond_nnz " << st.preconditioner_nonzeros << " blocks "
           << st.admissible_blocks << " dense_fallback " << st.dense_blocks << " mean_rank " << st.mean_rank
           << " max_rank " << st.max_rank << " hmatrix_gb " << st.memory_gb();
-      log << " preconditioner " << (sys->dense_single ? "dense_single" : "near_field");
+      log << " preconditioner " << (sys->dense_single ? "dense_single" : sys->hodlr ? "hodlr" : "near_field");
+      if (sys->hodlr) {
+        const HodlrStats& hs = sys->hodlr->stats();
+        log << " hodlr_gb " << hs.memory_gb << " hodlr_mean_rank " << hs.mean_rank << " hodlr_max_rank " << hs.max_rank
+            << " hodlr_capped " << hs.capped_blocks << " hodlr_compress_thread_s " << hs.seconds_compress
+            << " hodlr_factor_thread_s " << hs.seconds_factor;
+      }
       if (sys->dense_single) log << " expand_s " << sys->expand_seconds << " dense_single_gb " << sys->dense_single->memory_gb();
     }
     if (!iterations.empty()) {

@@ -22,6 +22,7 @@
 #include "bem_options.hpp"
 #include "gmres.hpp"
 #include "hmatrix.hpp"
+#include "hodlr.hpp"
 #include "incident.hpp"
 #include "mesh.hpp"
 #include "plumage/scattering_solver.hpp"
@@ -53,6 +54,7 @@ struct System {
   std::unique_ptr<NearFieldLU> near_field;
   std::unique_ptr<HMatrix> hmatrix;
   std::unique_ptr<SinglePrecisionLU> dense_single;
+  std::unique_ptr<HodlrLU> hodlr;
   double assembly_seconds = 0, factor_seconds = 0;
   double expand_seconds = 0;  // dense_single: H-matrix → dense float (part of factor_seconds)
   // Solves for every column of B (LU, or GMRES column by column); `iterations` gets the GMRES

@@ -20,15 +20,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The 8×8 local block of domain `dom` for test segment A, basis segment B.
-Local8 local_pair(const Segment& A, const Segment& B, const PairIntegrals& in, int dom, const Medium& m, double k0,
-                  double beta) {
-  const double sa = A.a == dom ? 1.0 : -1.0, sb = B.a == dom ? 1.0 : -1.0;
-  Local8 loc{};
-  local_block(A, B, in, m, k0, beta, sa * sb, loc);
-  return loc;
-}
-
 // A segment pair of one domain's near field.
 struct NearPair {
   int dom, a, b;  // mesh segment indices, a before b in mesh.domain_segments[dom]
@@ -63,6 +54,14 @@ std::vector<NearPair> near_pairs(const Mesh& mesh, const std::vector<ClusterTree
 }
 
 }  // namespace
+
+Local8 local_pair(const Segment& A, const Segment& B, const PairIntegrals& in, int dom, const Medium& m, double k0,
+                  double beta) {
+  const double sa = A.a == dom ? 1.0 : -1.0, sb = B.a == dom ? 1.0 : -1.0;
+  Local8 loc{};
+  local_block(A, B, in, m, k0, beta, sa * sb, loc);
+  return loc;
+}
 
 double HMatrixStats::memory_gb() const {
   return (lowrank_entries * 16.0 + (near_nonzeros + preconditioner_nonzeros) * 20.0) / 1e9;

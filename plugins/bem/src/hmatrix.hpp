@@ -36,7 +36,9 @@ struct HMatrixOptions {
   // expanded to complex<float> and factorised (single_precision_lu.hpp) — 8 N² bytes, for rod
   // lattices where no near field that fits in memory preconditions (NOTES.md §5); no near-field
   // copy is kept then.
-  enum class Preconditioner { near_field, dense_single };
+  // hodlr: hierarchical LU of the whole operator with weak admissibility (hodlr.hpp), no near-field
+  // copy either.
+  enum class Preconditioner { near_field, dense_single, hodlr };
   Preconditioner preconditioner = Preconditioner::near_field;
 };
 
@@ -49,6 +51,10 @@ struct HMatrixStats {
   double near_seconds = 0, aca_seconds = 0;
   double memory_gb() const;
 };
+
+// The 8×8 local block of domain `dom` for test segment A, basis segment B (σ signs applied).
+Local8 local_pair(const Segment& A, const Segment& B, const PairIntegrals& in, int dom, const Medium& m, double k0,
+                  double beta);
 
 class HMatrix {
  public:
@@ -69,6 +75,7 @@ class HMatrix {
   Eigen::MatrixXcf to_dense_single(const Mesh& mesh, const std::vector<Medium>& media) const;
 
  private:
+  friend class HMatrixEntries;  // rows and columns of Z for the HODLR preconditioner (hmatrix_entries.hpp)
   struct LowRank {
     int r0 = 0, nr = 0, c0 = 0, nc = 0;  // segment ranges (cluster order)
     Eigen::MatrixXcd U[3], V[3];         // kernels I, X, Z: U 2nr × k, V k × 2nc; or U dense, V empty

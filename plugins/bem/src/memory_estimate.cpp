@@ -66,6 +66,10 @@ MemoryEstimate estimate_system_memory(const Mesh& mesh, double lambda_nm, const 
     if (options.hmatrix.preconditioner == HMatrixOptions::Preconditioner::dense_single) {
       e.add("dense single-precision LU 8 N^2", 8.0 * n * n);
       e.lower_with = {ppw, "preconditioner: near_field"};
+    } else if (options.hmatrix.preconditioner == HMatrixOptions::Preconditioner::hodlr) {
+      e.add("column-major copy of the near field (while factorising)", entries * kSparseEntryBytes);
+      e.add("HODLR factor (rank <= hodlr_max_rank)", hodlr_memory_bound_bytes(n, options.hodlr));
+      e.lower_with = {ppw, "hodlr_max_rank (now " + number(options.hodlr.max_rank) + ")"};
     } else {
       e.add("preconditioner copy of the near field", entries * kSparseEntryBytes);
       e.add("sparse LU of the near field", entries * lu_bytes_per_entry(n));

@@ -37,7 +37,10 @@ std::vector<double> fingerprint(const BemOptions& o) {
           static_cast<double>(o.log_file.size()),
           o.warn_min_ppw,
           o.warn_gap_ratio,
-          static_cast<double>(o.max_memory.size())};
+          static_cast<double>(o.max_memory.size()),
+          o.hodlr.tolerance,
+          static_cast<double>(o.hodlr.leaf_size),
+          static_cast<double>(o.hodlr.max_rank)};
 }
 
 // A value other than the default, of the parameter's type and within its range.
@@ -75,7 +78,7 @@ TEST_CASE("bem parameter table: an empty section gives the defaults of BemOption
     if (spec.name == "method") CHECK(spec.default_value == "dense");
     if (spec.name == "gmres_tolerance") CHECK(spec.default_value == "1e-08");
     if (spec.name == "aca_tolerance") CHECK(spec.default_value == "1e-06");
-    if (spec.name == "preconditioner") CHECK(spec.range == "near_field | dense_single");
+    if (spec.name == "preconditioner") CHECK(spec.range == "near_field | dense_single | hodlr");
   }
 }
 
@@ -83,7 +86,7 @@ TEST_CASE("bem parameter table: each declared parameter is read into its own fie
   const std::vector<double> base = fingerprint(BemOptions{});
   std::set<std::size_t> fields;
   const auto specs = bem_options_table().specs();
-  REQUIRE(specs.size() == 20);
+  REQUIRE(specs.size() == 23);
   for (const ParamSpec& spec : specs) {
     const std::string yaml = spec.name + ": " + other_value(spec);
     INFO(yaml);
