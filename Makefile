@@ -1,7 +1,7 @@
 # plumage: the two-command setup.
 #   make demo   install missing packages, build, render the default scene (build/demo/demo.png)
 #   make test   install missing packages, build, run the default test suite (ctest)
-# Also: make build, make validate (slow validations, ctest label `validation`), make bench,
+# Also: make materials (every species variant characterised into build/materials), make build, make validate (slow validations, ctest label `validation`), make bench,
 # make fuzz (each libFuzzer harness for 10 minutes), make test-sanitize (unit tests under ASan+UBSan).
 
 BUILD ?= build
@@ -9,7 +9,7 @@ JOBS  ?= $(shell nproc)
 PLUMAGE = $(BUILD)/bin/plumage
 DEMO_OUT = $(BUILD)/demo
 
-.PHONY: all deps configure build demo test validate bench fuzz test-sanitize clean
+.PHONY: all deps configure build demo materials test validate bench fuzz test-sanitize clean
 
 all: build
 
@@ -32,6 +32,18 @@ MATERIALS ?= $(BUILD)/materials
 demo: build
 	$(PLUMAGE) render $(DEMO_SCENE) --out $(DEMO_OUT) --materials $(MATERIALS)
 	@echo "demo: wrote $(DEMO_OUT)/demo.exr (linear radiance) and $(DEMO_OUT)/demo.png (preview)"
+
+# Every variant of every species of configs/species/ (SPECIES=rockdove starling... for some)
+# characterised at FIDELITY into $(MATERIALS), under the names scenes and `render --materials`
+# look up (`plumage materials`, material_batch.hpp): a current material is skipped, an interrupted
+# one resumes from its journal, so the target can be stopped and rerun. CHARACTERIZE_FLAGS passes
+# overrides through (e.g. --grid 4 --lambda-nm 400,500 for a quick look).
+FIDELITY ?= production
+SPECIES ?= all
+CHARACTERIZE_FLAGS ?=
+SPECIES_FILES = $(if $(filter all,$(SPECIES)),$(sort $(wildcard configs/species/*.yaml)),$(SPECIES:%=configs/species/%.yaml))
+materials: build
+	$(PLUMAGE) materials $(SPECIES_FILES) --fidelity $(FIDELITY) --into $(MATERIALS) $(CHARACTERIZE_FLAGS)
 
 test: build
 	cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -LE validation

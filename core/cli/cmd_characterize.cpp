@@ -9,11 +9,10 @@
 #include <memory>
 #include <sstream>
 
+#include "characterize_flags.hpp"
 #include "commands.hpp"
-#include "param_flags.hpp"
 #include "plumage/bench_record.hpp"
 #include "plumage/characterize.hpp"
-#include "plumage/config_document.hpp"
 #include "plumage/fidelity.hpp"
 #include "plumage/species_config.hpp"
 #include "progress.hpp"
@@ -24,28 +23,8 @@ namespace {
 
 struct Options {
   std::string config, variant, fidelity = "preview", out, shard, diagnostics, record;
-  std::map<std::string, std::string> overrides;  // flag values by parameter name (as typed)
+  OverrideFlags overrides;  // flag values by parameter name (as typed)
 };
-
-std::string flag_of(std::string name) {
-  std::replace(name.begin(), name.end(), '_', '-');
-  return "--" + name;
-}
-
-// The overrides as the library's parameter table reads them (its ranges and messages).
-CharacterizeOverrides read_overrides(const Options& o) {
-  std::vector<std::string> args;
-  for (const auto& [name, value] : o.overrides) {
-    if (value.empty()) continue;
-    args.push_back(flag_of(name));
-    args.push_back(value);
-  }
-  const auto& table = characterize_overrides_table();
-  const ConfigDocument doc = ConfigDocument::parse(flags_to_yaml(table.specs(), args), "command line");
-  CharacterizeOverrides overrides = table.read(doc.root());
-  doc.root().finish();
-  return overrides;
-}
 
 CharacterizeShard parse_shard(const std::string& text) {
   int i = 0, n = 0;
@@ -70,7 +49,7 @@ void run(AppContext& context, const Options& o) {
   check_output_flag("--record", o.record, {o.config}, "species config");
   check_output_folder_flag("--diagnostics", o.diagnostics);
   const SpeciesConfig config = load_species_config(o.config, context.registry(), o.variant);
-  const CharacterizeSettings s = characterize_settings(config, context.registry(), o.fidelity, read_overrides(o));
+  const CharacterizeSettings s = characterize_settings(config, context.registry(), o.fidelity, read_characterize_overrides(o.overrides));
   CharacterizeOptions options;
   if (!o.shard.empty()) options.shard = parse_shard(o.shard);
   options.diagnostics_dir = o.diagnostics;
@@ -120,8 +99,7 @@ void add_characterize_command(CLI::App& app, AppContext& context) {
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Material file to write (.plm), or the shard file with --shard")->required();
   cmd->add_option("--shard", o->shard, "Compute only shard i of N (1-based, i/N); combine with `plumage merge`");
-  for (const ParamSpec& p : characterize_overrides_table().specs())
-    cmd->add_option(flag_of(p.name), o->overrides[p.name], p.meaning + " (default: " + p.default_value + ")");
+  add_characterize_override_flags(*cmd, o->overrides);
   cmd->add_option("--diagnostics", o->diagnostics, "Folder for pattern-vs-fit pictures and the fit-quality summary");
   cmd->add_option("--record", o->record, "Record the timing in this benchmarks markdown file");
   cmd->callback([&context, o] { run(context, *o); });

@@ -20,6 +20,7 @@ void add_compare_command(CLI::App& app, AppContext& context);       // cmd_compa
 void add_characterize_command(CLI::App& app, AppContext& context);  // cmd_characterize.cpp
 void add_merge_command(CLI::App& app, AppContext& context);         // cmd_merge.cpp
 void add_brdf_command(CLI::App& app, AppContext& context);          // cmd_brdf.cpp
+void add_materials_command(CLI::App& app, AppContext& context);     // cmd_materials.cpp (issue 26)
 void add_render_command(CLI::App& app, AppContext& context);        // cmd_render.cpp (issue 8)
 
 }  // namespace plumage::cli

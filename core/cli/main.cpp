@@ -54,6 +54,7 @@ int main(int argc, char** argv) {
   add_characterize_command(app, context);
   add_brdf_command(app, context);
   add_merge_command(app, context);
+  add_materials_command(app, context);
   add_render_command(app, context);
   // `bench` hands everything after it to the benchmark (prefix command): nothing falls through.
   app.get_subcommand("bench")->fallthrough(false);

@@ -77,6 +77,10 @@ class MaterialStore {
   std::optional<ResolvedMaterial> find(const CharacterizeSettings& s) const;
   // Where a material of these settings is cached.
   std::filesystem::path canonical_path(const CharacterizeSettings& s) const;
+  // The material of a variant at exactly `fidelity` (no fallback to another fidelity): the cached
+  // one when its key is current, else characterised into canonical_path, resuming from that
+  // file's journal when an earlier run of the same settings was interrupted (`make materials`).
+  ResolvedMaterial make(const SpeciesConfig& config, const std::string& fidelity) const;
 
   const MaterialStoreOptions& options() const { return options_; }
 

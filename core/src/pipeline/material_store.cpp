@@ -153,6 +153,13 @@ ResolvedMaterial MaterialStore::resolve(const MaterialRequest& q) const {
   return characterise(config, preview, out);
 }
 
+ResolvedMaterial MaterialStore::make(const SpeciesConfig& config, const std::string& fidelity) const {
+  const CharacterizeSettings s = settings(config, fidelity);
+  if (auto hit = find(s)) return *hit;
+  // The canonical name holds the key, so a rerun of the same settings finds its journal there.
+  return characterise(config, s, canonical_path(s));
+}
+
 ResolvedMaterial MaterialStore::characterise(const SpeciesConfig& config, const CharacterizeSettings& s,
                                              const fs::path& out) const {
   create_output_directory(options_.directory);

@@ -1,0 +1,84 @@
+// `plumage materials SPECIES.yaml... [--fidelity F] [--into DIR] [--grid G ...]` (issue 26, behind
+// `make materials`): every variant of every species file characterised into the material store's
+// folder under the name scenes and `render --materials` look up (plumage/material_batch.hpp).
+// A current material is skipped, an interrupted one resumes from its journal. One line per
+// variant, a summary at the end; this file parses flags and prints.
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "characterize_flags.hpp"
+#include "commands.hpp"
+#include "plumage/fidelity.hpp"
+#include "plumage/material_batch.hpp"
+#include "progress.hpp"
+
+namespace plumage::cli {
+
+namespace {
+
+struct Options {
+  std::vector<std::string> species;
+  std::string fidelity = "production", into = "build/materials";
+  OverrideFlags overrides;
+};
+
+std::string seconds(double s) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(1) << s << " s";
+  return o.str();
+}
+
+void run(AppContext& context, const Options& o) {
+  check_output_folder_flag("--into", o.into);
+  MaterialStoreOptions store_options;
+  store_options.directory = o.into;
+  store_options.overrides = read_characterize_overrides(o.overrides);
+  store_options.preparation = context.preparation();  // --tables
+  std::unique_ptr<Progress> progress;
+  store_options.progress = [&](std::size_t done, std::size_t total, std::string_view what) {
+    if (done == 0) progress = std::make_unique<Progress>(std::string(what), total, context.quiet);
+    else if (progress) progress->advance(done);
+  };
+  if (!context.quiet) store_options.status = [](std::string_view line) {
+    // Only what explains a characterisation: a stale or damaged file, a resumed journal.
+    if (line.find("stale") != std::string_view::npos || line.find("damaged") != std::string_view::npos ||
+        line.find("resuming") != std::string_view::npos)
+      std::cerr << "  " << line << "\n";
+  };
+  const MaterialStore store(context.registry(), store_options);
+  std::vector<std::filesystem::path> files(o.species.begin(), o.species.end());
+  const auto tag = [](const MaterialBatchItem& item) {
+    return "[" + std::to_string(item.index) + "/" + std::to_string(item.total) + "] " + item.label;
+  };
+  const auto on_start = [&](const MaterialBatchItem& item) {
+    if (!context.quiet) std::cerr << tag(item) << ": looking up " << item.file.string() << "\n";
+  };
+  const auto on_item = [&](const MaterialBatchItem& item) {
+    if (item.made) std::cout << tag(item) << ": done in " << seconds(item.wall_s) << " wall, " << seconds(item.cpu_s) << " CPU -> ";
+    else std::cout << tag(item) << ": skipped (current) ";
+    std::cout << item.file.string() << std::endl;
+  };
+  const MaterialBatchSummary sum = make_materials(store, context.registry(), files, o.fidelity, on_start, on_item);
+  std::cout << "materials (" << o.fidelity << ") in " << o.into << ": " << sum.made + sum.skipped << " variants, " << sum.made
+            << " made, " << sum.skipped << " skipped (current); " << seconds(sum.wall_s) << " wall, " << seconds(sum.cpu_s)
+            << " CPU characterising" << std::endl;
+}
+
+}  // namespace
+
+void add_materials_command(CLI::App& app, AppContext& context) {
+  auto o = std::make_shared<Options>();
+  auto* cmd = app.add_subcommand("materials",
+                                 "Characterise every variant of species files into a materials folder (skips current ones)");
+  cmd->add_option("species", o->species, "Species YAML files")->required();
+  cmd->add_option("--fidelity", o->fidelity, "Fidelity preset of every material")
+      ->check(CLI::IsMember(fidelity_names()))
+      ->capture_default_str();
+  cmd->add_option("--into", o->into, "Folder of the materials (as `render --materials`)")->capture_default_str();
+  add_characterize_override_flags(*cmd, o->overrides);
+  cmd->callback([&context, o] { run(context, *o); });
+}
+
+}  // namespace plumage::cli
