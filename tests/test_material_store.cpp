@@ -189,6 +189,35 @@ TEST_CASE("material store: a damaged hit is skipped, a fallback is a warning", "
   CHECK(quiet.count("material.fidelity_fallback") == 0);
 }
 
+TEST_CASE("material store: make() at one fidelity; a production material serves preview first", "[material-store]") {
+  const fs::path rockdove = scratch_species("store-make", "rockdove");
+  const fs::path dir = rockdove.parent_path().parent_path() / "materials";
+  const MaterialStore store = tiny_store(dir);
+  const SpeciesConfig config = load_species_config(rockdove, registry());
+  const MaterialRequest request{{}, rockdove, "", "preview", {}};
+  const ResolvedMaterial preview = store.resolve(request);
+  REQUIRE(preview.characterised);
+  // make() does not take the preview material for production: it characterises, under the
+  // canonical name, and skips it the next time.
+  const ResolvedMaterial made = store.make(config, "production");
+  CHECK(made.characterised);
+  CHECK(made.fidelity == "production");
+  CHECK(made.file == store.canonical_path(store.settings(config, "production")));
+  CHECK(made.material->key == store.settings(config, "production").key());
+  const ResolvedMaterial again = store.make(config, "production");
+  CHECK_FALSE(again.characterised);
+  CHECK(again.file == made.file);
+  // With both in the folder, a preview request (the scenes') gets the production one.
+  const ResolvedMaterial served = store.resolve(request);
+  CHECK_FALSE(served.characterised);
+  CHECK(served.fidelity == "production");
+  CHECK(served.file == made.file);
+  // And make() at preview finds the preview one, not the production one.
+  const ResolvedMaterial own = store.make(config, "preview");
+  CHECK_FALSE(own.characterised);
+  CHECK(own.file == preview.file);
+}
+
 TEST_CASE("journals and shards of another fit revision are refused", "[material-store][characterize]") {
   const fs::path rockdove = scratch_species("fit-revision", "rockdove");
   const fs::path dir = rockdove.parent_path();

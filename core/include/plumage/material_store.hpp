@@ -13,7 +13,8 @@
 // to the working directory like build/cache/tables). Files of other names starting with
 // <species>-<variant> whose header key matches are used too, e.g. a production material written
 // there by `plumage characterize --out`. A preview request is served by a production material
-// if no preview one exists; a production request that finds none is served at preview fidelity
+// when one exists, else by a preview one (so after `make materials` the scenes that ask for
+// preview render with production materials); a production request that finds none is served at preview fidelity
 // with the warning `material.fidelity_fallback` (plumage/diagnostics.hpp), so every file made
 // with it (an image's plumage:warnings) says so.
 #pragma once

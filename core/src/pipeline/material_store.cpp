@@ -130,13 +130,15 @@ ResolvedMaterial MaterialStore::resolve(const MaterialRequest& q) const {
   }
   const SpeciesConfig config = load_species_config(q.species_config, registry_, q.variant);
   const CharacterizeSettings wanted = settings(config, q.fidelity);
-  if (auto hit = find(wanted)) return *hit;
-  // A production material serves a preview request (it is better); a preview one serves a
-  // production request only as a fallback, said in a warning that every image made with it carries.
-  const CharacterizeSettings preview = q.fidelity == "preview" ? wanted : settings(config, "preview");
+  // A production material serves a preview request, before a preview one (it is better: once
+  // `make materials` has run, the scenes asking for preview use its materials); a preview one
+  // serves a production request only as a fallback, said in a warning every image made with it carries.
   if (q.fidelity == "preview") {
     if (auto hit = find(settings(config, "production"))) return *hit;
-  } else {
+  }
+  if (auto hit = find(wanted)) return *hit;
+  const CharacterizeSettings preview = q.fidelity == "preview" ? wanted : settings(config, "preview");
+  if (q.fidelity != "preview") {
     warn("material.fidelity_fallback",
          "no " + q.fidelity + " material for " + wanted.label + " in " + options_.directory.string() +
              " (make one with `plumage characterize " + q.species_config.string() + " --variant " + config.variant +
