@@ -234,14 +234,15 @@ void interpolate_samples(const KGrid& g, const std::vector<fdtd::Spectrum>& spec
 // the Bloch-k corners that lie just below it (κ moves fast there: dκ ≈ −(k_∥/k0)/κ · dk_∥/k0)
 // and was made from part of its corners or continued instead (0.01–0.06 in |r|² off). The engine
 // therefore runs with the threshold lowered to the smallest κ of any weighted, propagating corner
-// of a sample, but not below kEngineKappaFloor (such corners stay dropped): the engine's own
-// error at fixed k is 3e-2 at κ = 0.05 (NOTES §5a), but a corner there is only a part of a
-// bilinear weight in Z, and measured on mallard-green at (700 nm, cos θ = cos φ = 0.5) the
-// floor 0.1 left 0.013 against the rcwa (a 0.42-weight corner at κ = 0.084 dropped), 0.05 gave
-// 0.004 (NOTES "Issue 27: the kz_min boundary"). Which entries are simulated is still
+// of a sample, but not below kEngineKappaFloor (such corners stay dropped), where the engine's
+// own error at fixed k reaches 7e-3 (NOTES §5a). Measured on a mallard-green 7 × 4 × 4 table
+// (NOTES §6a): floor 0.1 and 0.05 both leave 5 of 21 boundary entries above 0.005 against the
+// rcwa; 0.05 fixes (700 nm, 0.5, 0.5) (0.0125 → 0.0034) but costs 20 % more CPU, worsens
+// (400 nm, 0.5, 0.5) (0.0041 → 0.0065) and had a run stop at the time cap: 0.1. Which entries
+// are simulated is still
 // decided by kz_min. kRoundingSlack: κ = cos θ cos φ = kz_min exactly, recomputed from (k_x, k_y),
 // may round below it (the exact-k mode lost such entries).
-constexpr double kEngineKappaFloor = 0.05;
+constexpr double kEngineKappaFloor = 0.1;
 constexpr double kRoundingSlack = 1e-9;
 
 double engine_kz_min_k_grid(const KGrid& g, const TableGrid& grid, const TableSamples& t, double kz_min) {
