@@ -23,10 +23,13 @@ void run(AppContext& context, const Options& o) {
   const FitResult result = fit_structure(spec, *model, [&](std::size_t done, std::size_t total) {
     if (!context.quiet) std::cerr << "fit: start " << done << "/" << total << " done\n";
   });
-  write_fit_outputs(spec, *model, result, o.out, !o.no_plot);
+  const std::vector<std::string> written = write_fit_outputs(spec, *model, result, o.out, !o.no_plot);
   std::cout << fit_summary_text(spec, *model, result);
-  if (!context.quiet) std::cerr << "wrote " << o.out << "/{fit.txt,fit.csv,fit_starts.csv,fit_spectrum.csv,"
-                                << (o.no_plot ? "" : "fit.png,") << "fitted.yaml}\n";
+  if (!context.quiet) {
+    std::cerr << "wrote " << o.out << "/{";
+    for (std::size_t i = 0; i < written.size(); ++i) std::cerr << (i ? "," : "") << written[i];
+    std::cerr << "}\n";
+  }
 }
 
 }  // namespace

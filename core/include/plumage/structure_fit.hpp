@@ -169,9 +169,10 @@ struct FitResult {
 FitResult fit_structure(const FitSpec& spec, const StructureForwardModel& model,
                         const std::function<void(std::size_t done, std::size_t total)>& progress = {});
 
-// The outputs of `plumage fit`: fit.txt, fit.csv (parameters, starts, spectrum), fit.png and
-// fitted.yaml in `out`, each written atomically. `draw` false skips the picture (no matplotlib).
-void write_fit_outputs(const FitSpec& spec, const StructureForwardModel& model, const FitResult& result,
+// The outputs of `plumage fit`: fit.txt, fit.csv (parameters, starts, spectrum), fit_peaks.csv
+// (with peak targets), fit.png (with reflectance targets) and fitted.yaml in `out`, each written
+// atomically. `draw` false skips the picture (no matplotlib). Returns the names written, in order.
+std::vector<std::string> write_fit_outputs(const FitSpec& spec, const StructureForwardModel& model, const FitResult& result,
                        const std::filesystem::path& out, bool draw = true);
 std::string fit_summary_text(const FitSpec& spec, const StructureForwardModel& model, const FitResult& result);
 

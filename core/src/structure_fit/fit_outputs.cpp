@@ -148,8 +148,8 @@ std::string fit_summary_text(const FitSpec& spec, const StructureForwardModel& m
   return t.str();
 }
 
-void write_fit_outputs(const FitSpec& spec, const StructureForwardModel& model, const FitResult& result,
-                       const std::filesystem::path& out, bool draw) {
+std::vector<std::string> write_fit_outputs(const FitSpec& spec, const StructureForwardModel& model,
+                                           const FitResult& result, const std::filesystem::path& out, bool draw) {
   std::filesystem::create_directories(out);
   // fitted.yaml first: a value the file refuses fails before any other output is written.
   std::ostringstream header;
@@ -162,10 +162,18 @@ void write_fit_outputs(const FitSpec& spec, const StructureForwardModel& model, 
   write_text_atomically(out / "fit.csv", parameters_csv(spec, result));
   write_text_atomically(out / "fit_starts.csv", starts_csv(spec, result));
   write_text_atomically(out / "fit_spectrum.csv", spectrum_csv(spec, result));
-  if (has_peaks(spec)) write_text_atomically(out / "fit_peaks.csv", peaks_csv(spec, result));
+  std::vector<std::string> written{"fitted.yaml", "fit.txt", "fit.csv", "fit_starts.csv", "fit_spectrum.csv"};
+  if (has_peaks(spec)) {
+    write_text_atomically(out / "fit_peaks.csv", peaks_csv(spec, result));
+    written.push_back("fit_peaks.csv");
+  }
   const bool any_reflectance = std::any_of(spec.targets.begin(), spec.targets.end(),
                                            [](const FitTarget& t) { return t.kind == FitTargetKind::reflectance; });
-  if (draw && any_reflectance) draw_fit(spec, result, out / "fit.png");
+  if (draw && any_reflectance) {
+    draw_fit(spec, result, out / "fit.png");
+    written.push_back("fit.png");
+  }
+  return written;
 }
 
 }  // namespace plumage
