@@ -84,8 +84,10 @@ void write_ladder_csv(const std::vector<LadderRow>& rows, const std::filesystem:
     for (const auto& r : rows) {
       const auto& p = r.point;
       out << csv_field(p.backend) << ',' << csv_field(p.case_name) << ',' << csv_field(p.setting) << ','
-          << p.fidelity << ',' << csv_field(p.reference) << ',' << csv_field(p.metric) << ',' << p.error << ','
-          << p.wall_s << ',' << p.cpu_s << ',' << (r.pareto ? 1 : 0) << '\n';
+          << p.fidelity << ',' << csv_field(p.reference) << ',' << csv_field(p.metric) << ','
+          // All digits of the error: rungs 1e-7 apart (float vs double paths) must stay ordered as
+          // the Pareto marks were computed.
+          << std::setprecision(17) << p.error << std::setprecision(6) << ',' << p.wall_s << ',' << p.cpu_s << ',' << (r.pareto ? 1 : 0) << '\n';
     }
   }, false);
 }
