@@ -25,11 +25,9 @@ void run(AppContext& context, const Options& o) {
   });
   const std::vector<std::string> written = write_fit_outputs(spec, *model, result, o.out, !o.no_plot);
   std::cout << fit_summary_text(spec, *model, result);
-  if (!context.quiet) {
-    std::cerr << "wrote " << o.out << "/{";
-    for (std::size_t i = 0; i < written.size(); ++i) std::cerr << (i ? "," : "") << written[i];
-    std::cerr << "}\n";
-  }
+  std::string list;
+  for (const std::string& f : written) list += (list.empty() ? "" : ",") + f;
+  if (!context.quiet) std::cerr << "wrote " << o.out << "/{" << list << "}\n";
 }
 
 }  // namespace

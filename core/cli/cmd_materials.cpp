@@ -1,12 +1,7 @@
 // `plumage materials SPECIES.yaml... [--fidelity F] [--into DIR] [--grid G ...]` (issue 26, behind
-// `make materials`): every variant of every species file characterised into the material store's
-// folder under the name scenes and `render --materials` look up (plumage/material_batch.hpp).
-// A current material is skipped, an interrupted one resumes from its journal. One line per
-// variant, a summary at the end; this file parses flags and prints.
-#include <iomanip>
+// `make materials`): flags and printing over make_materials (plumage/material_batch.hpp).
 #include <iostream>
 #include <memory>
-#include <sstream>
 
 #include "characterize_flags.hpp"
 #include "commands.hpp"
@@ -24,12 +19,6 @@ struct Options {
   OverrideFlags overrides;
 };
 
-std::string seconds(double s) {
-  std::ostringstream o;
-  o << std::fixed << std::setprecision(1) << s << " s";
-  return o.str();
-}
-
 void run(AppContext& context, const Options& o) {
   check_output_folder_flag("--into", o.into);
   MaterialStoreOptions store_options;
@@ -42,28 +31,16 @@ void run(AppContext& context, const Options& o) {
     else if (progress) progress->advance(done);
   };
   if (!context.quiet) store_options.status = [](std::string_view line) {
-    // Only what explains a characterisation: a stale or damaged file, a resumed journal.
-    if (line.find("stale") != std::string_view::npos || line.find("damaged") != std::string_view::npos ||
-        line.find("resuming") != std::string_view::npos)
-      std::cerr << "  " << line << "\n";
+    if (explains_characterisation(line)) std::cerr << "  " << line << "\n";
   };
   const MaterialStore store(context.registry(), store_options);
   std::vector<std::filesystem::path> files(o.species.begin(), o.species.end());
-  const auto tag = [](const MaterialBatchItem& item) {
-    return "[" + std::to_string(item.index) + "/" + std::to_string(item.total) + "] " + item.label;
-  };
   const auto on_start = [&](const MaterialBatchItem& item) {
-    if (!context.quiet) std::cerr << tag(item) << ": looking up " << item.file.string() << "\n";
+    if (!context.quiet) std::cerr << material_batch_item_tag(item) << ": looking up " << item.file.string() << "\n";
   };
-  const auto on_item = [&](const MaterialBatchItem& item) {
-    if (item.made) std::cout << tag(item) << ": done in " << seconds(item.wall_s) << " wall, " << seconds(item.cpu_s) << " CPU -> ";
-    else std::cout << tag(item) << ": skipped (current) ";
-    std::cout << item.file.string() << std::endl;
-  };
+  const auto on_item = [](const MaterialBatchItem& item) { std::cout << material_batch_item_line(item) << std::endl; };
   const MaterialBatchSummary sum = make_materials(store, context.registry(), files, o.fidelity, on_start, on_item);
-  std::cout << "materials (" << o.fidelity << ") in " << o.into << ": " << sum.made + sum.skipped << " variants, " << sum.made
-            << " made, " << sum.skipped << " skipped (current); " << seconds(sum.wall_s) << " wall, " << seconds(sum.cpu_s)
-            << " CPU characterising" << std::endl;
+  std::cout << material_batch_summary_line(sum, o.fidelity, o.into) << std::endl;
 }
 
 }  // namespace

@@ -3,22 +3,16 @@
 //     resumable: finished runs are kept in FILE.partial until the table is written)
 //   table query FILE --lambda-nm 500 --theta-deg 30 --phi-deg 10 [--format text|json]
 //   table plot FILE --out PNG                                      (|r|² over λ and angle)
-#include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <limits>
-#include <iterator>
 #include <optional>
 #include <memory>
-#include <sstream>
 
-#include "plumage/charts.hpp"
 #include "commands.hpp"
 #include "plumage/error.hpp"
-#include "plumage/reflection_table.hpp"
 #include "plumage/table_build.hpp"
+#include "plumage/table_report.hpp"
 #include "progress.hpp"
 
 namespace plumage::cli {
@@ -69,72 +63,15 @@ ReflectionTable load_input_table(const std::string& file) {
   }
 }
 
-// The table's notes (warnings included) inside a JSON string.
-std::string json_escape(const std::string& text) {
-  std::string out;
-  for (char ch : text) {
-    if (ch == '"' || ch == '\\') out += '\\';
-    if (static_cast<unsigned char>(ch) < 0x20) {
-      out += ' ';
-      continue;
-    }
-    out += ch;
-  }
-  return out;
-}
-
 void query(const QueryOptions& o) {
   const ReflectionTable t = load_input_table(o.file);
-  const JonesReflection r = t.query(o.lambda_nm, deg_to_rad(o.theta_deg), deg_to_rad(o.phi_deg));
-  const double Rs = reflectance_s(r), Rp = reflectance_p(r);
-  auto c = [](Complex z) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%.9g, %.9g", z.real(), z.imag());
-    return std::string(buf);
-  };
-  if (o.format == "json") {
-    std::cout << "{\"file\": \"" << o.file << "\", \"crystal\": \"" << t.metadata().crystal
-              << "\", \"lambda_nm\": " << o.lambda_nm << ", \"theta_deg\": " << o.theta_deg
-              << ", \"phi_deg\": " << o.phi_deg << ", \"jones\": {\"ss\": [" << c(r.ss) << "], \"sp\": ["
-              << c(r.sp) << "], \"ps\": [" << c(r.ps) << "], \"pp\": [" << c(r.pp)
-              << "]}, \"R_s\": " << Rs << ", \"R_p\": " << Rp << ", \"notes\": \"" << json_escape(t.metadata().notes)
-              << "\"}\n";
-  } else {
-    std::cout << t.metadata().crystal << " at " << o.lambda_nm << " nm, theta " << o.theta_deg
-              << " deg, phi_local " << o.phi_deg << " deg (Jones, (s, p) basis)\n"
-              << "  ss = " << c(r.ss) << "\n  sp = " << c(r.sp) << "\n  ps = " << c(r.ps)
-              << "\n  pp = " << c(r.pp) << "\n  R_s = " << Rs << "  R_p = " << Rp << "\n"
-              << "  notes: " << t.metadata().notes << "\n";
-  }
+  std::cout << table_query_report(t, o.file, o.lambda_nm, o.theta_deg, o.phi_deg,
+                                  o.format == "json" ? TableQueryFormat::json : TableQueryFormat::text);
 }
 
 void plot(const PlotOptions& o) {
   check_output_flag("--out", o.out, {o.file}, "table");
-  const ReflectionTable t = load_input_table(o.file);
-  const auto& L = t.grid().lambda_nm;
-  LineChart chart;
-  chart.title = t.metadata().crystal + " reflection table (" + o.file + ")";
-  chart.x_label = "wavelength (nm)";
-  chart.y_label = "|r|^2";
-  const double lo = L.front(), hi = L.back();
-  const int n = std::max<int>(2, static_cast<int>(L.size()) * 4);
-  for (int pol = 0; pol < 2; ++pol) {
-    const std::string name = pol == 0 ? "s" : "p";
-    for (double a : {0.0, 20.0, 40.0, 60.0, 75.0}) {
-      for (int k = 0; k < n; ++k) {
-        const double lam = L.size() == 1 ? lo : lo + (hi - lo) * k / (n - 1);
-        const JonesReflection rp = t.query(lam, 0.0, deg_to_rad(a));  // in-plane (phi_local)
-        const JonesReflection rt = t.query(lam, deg_to_rad(a), 0.0);  // conical (theta)
-        const double Rp = pol == 0 ? reflectance_s(rp) : reflectance_p(rp);
-        const double Rt = pol == 0 ? reflectance_s(rt) : reflectance_p(rt);
-        char series[64];
-        std::snprintf(series, sizeof series, "%g deg", a);
-        chart.points.push_back({name + "-pol, theta = 0, angle = phi_local", series, lam, Rp});
-        chart.points.push_back({name + "-pol, phi_local = 0, angle = theta", series, lam, Rt});
-      }
-    }
-  }
-  draw_line_chart(chart, o.out);
+  draw_table_overview(load_input_table(o.file), o.file, o.out);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "plumage/material_store.hpp"
@@ -38,5 +39,16 @@ MaterialBatchSummary make_materials(const MaterialStore& store, const PluginRegi
                                     const std::string& fidelity,
                                     const std::function<void(const MaterialBatchItem&)>& on_start,
                                     const std::function<void(const MaterialBatchItem&)>& on_item);
+
+// The progress lines of `plumage materials`: "[i/N] species/variant: done in X s wall, Y s CPU ->
+// file" or "...: skipped (current) file", and the batch's summary.
+std::string material_batch_item_line(const MaterialBatchItem& item);
+std::string material_batch_item_tag(const MaterialBatchItem& item);  // "[i/N] species/variant"
+std::string material_batch_summary_line(const MaterialBatchSummary& summary, const std::string& fidelity,
+                                        const std::filesystem::path& folder);
+
+// Whether a material store status line explains a characterisation (a stale or damaged file, a
+// resumed journal): the ones a batch shows.
+bool explains_characterisation(std::string_view status_line);
 
 }  // namespace plumage

@@ -1,6 +1,8 @@
 // make_materials (material_batch.hpp): the variants of species files through the material store.
 #include "plumage/material_batch.hpp"
 
+#include <sstream>
+#include <iomanip>
 #include <utility>
 
 #include "plumage/species_config.hpp"
@@ -43,4 +45,39 @@ MaterialBatchSummary make_materials(const MaterialStore& store, const PluginRegi
   return summary;
 }
 
+namespace {
+
+std::string seconds(double s) {
+  std::ostringstream o;
+  o << std::fixed << std::setprecision(1) << s << " s";
+  return o.str();
+}
+
+}  // namespace
+
+std::string material_batch_item_tag(const MaterialBatchItem& item) {
+  return "[" + std::to_string(item.index) + "/" + std::to_string(item.total) + "] " + item.label;
+}
+
+std::string material_batch_item_line(const MaterialBatchItem& item) {
+  std::string line = material_batch_item_tag(item);
+  line += item.made ? ": done in " + seconds(item.wall_s) + " wall, " + seconds(item.cpu_s) + " CPU -> "
+                    : std::string(": skipped (current) ");
+  return line + item.file.string();
+}
+
+std::string material_batch_summary_line(const MaterialBatchSummary& sum, const std::string& fidelity,
+                                        const std::filesystem::path& folder) {
+  return "materials (" + fidelity + ") in " + folder.string() + ": " + std::to_string(sum.made + sum.skipped) +
+         " variants, " + std::to_string(sum.made) + " made, " + std::to_string(sum.skipped) + " skipped (current); " +
+         seconds(sum.wall_s) + " wall, " + seconds(sum.cpu_s) + " CPU characterising";
+}
+
+bool explains_characterisation(std::string_view line) {
+  for (std::string_view word : {"stale", "damaged", "resuming"})
+    if (line.find(word) != std::string_view::npos) return true;
+  return false;
+}
+
 }  // namespace plumage
+
