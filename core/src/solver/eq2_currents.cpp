@@ -217,7 +217,11 @@ class NodeLanes {
       Complex* out = amplitudes_.data() + (column + c) * amplitudes_.outerStride() + static_cast<Eigen::Index>(m0);
       const v4d re = lit ? current[c].re * weight : zero;
       const v4d im = lit ? current[c].im * weight : zero;
-      for (int l = 0; l < count; ++l) out[l] = Complex(re[l], im[l]);
+      if (count == kNodeLanes) {  // a constant trip count: interleaved vector stores
+        for (int l = 0; l < kNodeLanes; ++l) out[l] = Complex(re[l], im[l]);
+      } else {
+        for (int l = 0; l < count; ++l) out[l] = Complex(re[l], im[l]);
+      }
     }
   }
 
