@@ -8,6 +8,7 @@
 
 #include "plumage/error.hpp"
 #include "plumage/simd_math.hpp"
+#include "eq2_currents.hpp"
 #include "radiation.hpp"
 #include "surface_validity.hpp"
 
@@ -18,9 +19,7 @@ namespace {
 using Vec3 = std::array<double, 3>;
 using CVec3 = std::array<Complex, 3>;
 
-// Nodes whose local incidence is within 1e-3 rad of grazing, or beyond, carry no current
-// (back-facing; the reference code's threshold). There is no shadowing between nodes.
-constexpr double kGrazingCutoff = 1e-3;
+using detail::kGrazingCutoff;
 
 // Everything about one instance that the far field needs, independent of λ and ω_i.
 struct PreparedTop final : ScatteringSolver::Prepared {
@@ -53,8 +52,10 @@ double dot3(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a
 // requested and stay zero (issue 26). The test is point_currents' with a margin of 1e-12, so
 // that a different rounding of the same dot product (FMA contraction) cannot skip a point that
 // point_currents lights.
-std::vector<JonesReflection> local_reflection(const PreparedTop& top, double lambda_nm, double theta_i_rad,
-                                              std::span<const double> phi_i_rad) {
+// The result is a per-thread buffer, valid until the thread's next call (no fresh pages per
+// solve(): 0.9 MB for a production group).
+std::span<const JonesReflection> local_reflection(const PreparedTop& top, double lambda_nm, double theta_i_rad,
+                                                  std::span<const double> phi_i_rad) {
   const bool sub = top.samples > 1;
   const std::vector<Vec2>& normals = sub ? top.sample_normals : top.normals;
   const std::vector<LayerProfile>& profiles = sub ? top.sample_profiles : top.profiles;
@@ -64,15 +65,20 @@ std::vector<JonesReflection> local_reflection(const PreparedTop& top, double lam
   thread_local std::vector<LocalReflection::Request> requests;
   thread_local std::vector<std::size_t> where;  // index into the result of each request
   thread_local std::vector<JonesReflection> lit_jones;
+  thread_local std::vector<JonesReflection> jones;
   requests.clear();
   where.clear();
+  jones.resize(points * phi_i_rad.size());
   thread_local std::vector<double> psi;  // normal azimuths, once for all incident azimuths
   psi.resize(points);
   for (std::size_t m = 0; m < points; ++m) psi[m] = std::atan2(normals[m].x, normals[m].z);
   for (std::size_t a = 0; a < phi_i_rad.size(); ++a) {
     const Vec3 w_i{ct * std::sin(phi_i_rad[a]), st, ct * std::cos(phi_i_rad[a])};  // as in solve()
     for (std::size_t m = 0; m < points; ++m) {
-      if (dot3(w_i, {normals[m].x, 0.0, normals[m].z}) <= lit) continue;
+      if (dot3(w_i, {normals[m].x, 0.0, normals[m].z}) <= lit) {
+        jones[a * points + m] = {};  // never read; zero, as every entry is written once
+        continue;
+      }
       requests.push_back({lambda_nm, {theta_i_rad, phi_i_rad[a] - psi[m]},
                           profiles.empty() ? nullptr : &profiles[m]});
       where.push_back(a * points + m);
@@ -80,14 +86,10 @@ std::vector<JonesReflection> local_reflection(const PreparedTop& top, double lam
   }
   lit_jones.resize(requests.size());
   top.reflection->reflect(requests, lit_jones);
-  std::vector<JonesReflection> jones(points * phi_i_rad.size());
   for (std::size_t i = 0; i < requests.size(); ++i) jones[where[i]] = lit_jones[i];
   return jones;
 }
 
-[[gnu::always_inline]] inline Vec3 cross3(const Vec3& a, const Vec3& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
 [[gnu::always_inline]] inline CVec3 cross3(const Vec3& a, const CVec3& b) {
   return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
@@ -106,126 +108,10 @@ Complex far_field_prefactor(double k0, double gamma0) {
   return (k0 / 4.0) * std::sqrt(2.0 / (kPi * gamma0)) * std::polar(1.0, -kPi / 4);
 }
 
-// The Eq. 2 currents (J̃ = n̂ × η0H, M = −n̂ × E; incident phase factored out) of both
-// polarizations at a surface point with normal n̂ and local reflection r, into out[0]; with
-// `with_lossless` also those of the lossless reference (fill_amplitudes) into out[1], from the
-// same local basis (issue 26: one pass instead of two over the nodes). False if the point faces
-// away from the light (within kGrazingCutoff of grazing or beyond).
-using PointCurrents = std::array<std::array<Complex, 6>, 2>;  // [pol][J̃x J̃y J̃z Mx My Mz]
-
-bool point_currents(const Vec2& normal, const Vec3& w_i, const JonesReflection& r,
-                    const PlaneWavePolarization (&pol)[2], bool with_incident, bool with_lossless,
-                    PointCurrents (&out)[2]) {
-  const Vec3 n{normal.x, 0.0, normal.z};
-  const double cos_a = dot3(w_i, n);
-  if (cos_a <= std::sin(kGrazingCutoff)) return false;
-  // Local s direction ŝ = ω_i × n̂/|…| (ŷ at exactly normal incidence), reflected direction
-  // ω_r = 2 cos α n̂ − ω_i, and r̂ = ω_r × ŝ (the reflected p-wave's E is −a_p r̂).
-  Vec3 s_hat = cross3(w_i, n);
-  const double s_len = std::sqrt(dot3(s_hat, s_hat));
-  s_hat = s_len < 1e-4 ? Vec3{0.0, 1.0, 0.0} : Vec3{s_hat[0] / s_len, s_hat[1] / s_len, s_hat[2] / s_len};
-  const Vec3 w_r{2 * cos_a * n[0] - w_i[0], 2 * cos_a * n[1] - w_i[1], 2 * cos_a * n[2] - w_i[2]};
-  const Vec3 r_hat = cross3(w_r, s_hat);
-  const int variants = with_lossless ? 2 : 1;
-  for (int p = 0; p < 2; ++p) {
-    const Vec3& e = pol[p].e;
-    const Vec3& h = pol[p].eta0_h;
-    const double c_e = dot3(e, s_hat), c_h = dot3(h, s_hat);
-    for (int v = 0; v < variants; ++v) {
-      Complex a_s = r.ss * c_e + r.sp * c_h;
-      Complex a_p = r.ps * c_e + r.pp * c_h;
-      if (v == 1) {  // lossless: all the incident power, phase and polarization kept
-        const double in = c_e * c_e + c_h * c_h, reflected = std::norm(a_s) + std::norm(a_p);
-        if (reflected > 1e-24 * in) {
-          const double scale = std::sqrt(in / reflected);
-          a_s *= scale, a_p *= scale;
-        } else {
-          a_s = -c_e, a_p = c_h;
-        }
-      }
-      CVec3 e_tot, h_tot;  // E and η0 H at the point, incident phase factored out
-      for (int c = 0; c < 3; ++c) {
-        e_tot[c] = a_s * s_hat[c] - a_p * r_hat[c];
-        h_tot[c] = a_s * r_hat[c] + a_p * s_hat[c];
-        if (with_incident) {
-          e_tot[c] += e[c];
-          h_tot[c] += h[c];
-        }
-      }
-      const CVec3 j = cross3(n, h_tot);
-      const CVec3 ne = cross3(n, e_tot);
-      for (int c = 0; c < 3; ++c) out[v][p][c] = j[c], out[v][p][3 + c] = -ne[c];
-    }
-  }
-  return true;
-}
-
-// Current amplitudes at every node for one incident direction, both polarizations: columns
-// [pol][J̃x J̃y J̃z Mx My Mz], times the window and the regularity, without the incident phase
-// (the kernel carries it); and the incident power Φ_i (Eq. 9). `jones` holds one matrix per
-// node, or per sub-sample when the solver sub-samples the reflection: then a node's currents are
-// the tent-weighted mean of its lit sub-samples' currents (each with its own normal and basis —
-// Jones matrices in different local bases cannot be averaged).
-//
-// With 24 columns, columns 12–23 receive the lossless reference: the reflected wave at every
-// point keeps its polarization and phase but carries all the incident power (|a_s|² + |a_p|² =
-// |E_i·ŝ|² + |η0H_i·ŝ|²), without the regularity factor: the reference of the `lossless`
-// normalisation. Where nothing is reflected (a polarization at its Brewster angle) it falls back
-// to a perfect conductor (a_s = −E_i·ŝ, a_p = η0H_i·ŝ).
-void fill_amplitudes(const PreparedTop& top, const IncidentDirection& incident, const Vec3& w_i,
-                     std::span<const JonesReflection> jones, bool with_incident,
-                     Eigen::Ref<Eigen::MatrixXcd> amplitudes, std::array<double, 2>& incident_power) {
-  const PlaneWavePolarization pol[2] = {incident_polarization(0, incident),
-                                        incident_polarization(1, incident)};
-  const bool with_lossless = amplitudes.cols() == 24;
-  const int variants = with_lossless ? 2 : 1;
-  incident_power = {0.0, 0.0};
-  const auto k = static_cast<std::size_t>(top.samples);
-  PointCurrents point[2]{};
-  for (std::size_t m = 0; m < top.normals.size(); ++m) {
-    const Vec3 n{top.normals[m].x, 0.0, top.normals[m].z};
-    const double cos_a = dot3(w_i, n);
-    if (cos_a > 0.0) {  // Eq. 9: power through the lit part of the top surface
-      const double flux =
-          top.node_length[m] * top.window[m] * top.window[m] * cos_a / (2.0 * kEta0_ohm);
-      incident_power[0] += flux;
-      incident_power[1] += flux;
-    }
-    PointCurrents sum[2]{};
-    double weights = 0.0;
-    if (k == 1) {
-      if (point_currents(top.normals[m], w_i, jones[m], pol, with_incident, with_lossless, point)) {
-        sum[0] = point[0], sum[1] = point[1], weights = 1.0;
-      }
-    } else {
-      // Node m is fine vertex (m + 1)K; its support spans fine vertices mK … (m + 2)K, i.e.
-      // sub-sample indices mK − 1 … (m + 2)K − 1, the two ends with weight 0.
-      for (std::size_t q = 1; q < 2 * k; ++q) {
-        const std::size_t f = m * k + q - 1;
-        if (!point_currents(top.sample_normals[f], w_i, jones[f], pol, with_incident, with_lossless, point)) continue;
-        // Trapezoid rule of ∫ Λ_m J dl: tent value times the sub-segment length of its side.
-        const double w = static_cast<double>(q <= k ? q : 2 * k - q) *
-                         (q <= k ? top.segment_length[m] : top.segment_length[m + 1]);
-        for (int v = 0; v < variants; ++v) {
-          for (int p = 0; p < 2; ++p) {
-            for (int c = 0; c < 6; ++c) sum[v][p][c] += w * point[v][p][c];
-          }
-        }
-        weights += w;
-      }
-    }
-    const auto row = static_cast<Eigen::Index>(m);
-    if (!(weights > 0.0)) {  // unlit: a zero row (only these rows are zeroed, not the matrix)
-      amplitudes.row(row).setZero();
-      continue;
-    }
-    for (int v = 0; v < variants; ++v) {
-      const double weight = top.window[m] * (v == 1 ? 1.0 : top.regularity[m]) / weights;
-      for (int p = 0; p < 2; ++p) {
-        for (int c = 0; c < 6; ++c) amplitudes(row, 12 * v + 6 * p + c) = weight * sum[v][p][c];
-      }
-    }
-  }
+// The per-node data the Eq. 2 currents read (eq2_currents.hpp).
+detail::CurrentNodes current_nodes(const PreparedTop& top) {
+  return {top.normals, top.window, top.node_length, top.regularity, top.segment_length, top.samples,
+          top.sample_normals};
 }
 
 }  // namespace
@@ -340,7 +226,7 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
     detail::warn_if_grazing(top.surface, lambda_nm, theta_i_rad, phi_i_rad[a], a);
 
   // 1. Local reflection under every node, for every incident azimuth, in one batch.
-  const std::vector<JonesReflection> jones = local_reflection(top, lambda_nm, theta_i_rad, phi_i_rad);
+  const std::span<const JonesReflection> jones = local_reflection(top, lambda_nm, theta_i_rad, phi_i_rad);
   const std::size_t points = jones.size() / n_phi;  // nodes, or sub-samples
 
   // 2. Per azimuth: current amplitudes (Eq. 2, without the incident phase), then the far field
@@ -381,7 +267,7 @@ std::vector<FarField> ApproximateSolver::solve(const Prepared& prepared, double 
     ff.incident = incident;
     ff.phi_o_rad.assign(phi_o_rad.begin(), phi_o_rad.end());
     // The currents and, with `lossless`, the lossless reference's in one pass (columns 12–23).
-    fill_amplitudes(top, incident, w_i, std::span<const JonesReflection>(jones).subspan(a * points, points),
+    detail::fill_amplitudes(current_nodes(top), incident, w_i, jones.subspan(a * points, points),
                     with_incident, amplitudes[a], ff.incident_power);
     // Incident phase k_i·ρ = −k0 ω_i·ρ at every vertex; the kernel integrates it exactly.
     for (std::size_t k = 0; k < verts; ++k) {
@@ -436,10 +322,10 @@ ApproximateSolver::NodeCurrents ApproximateSolver::currents(const Prepared& prep
   const double ct = std::cos(incident.theta_rad);
   const double sp = std::sin(incident.phi_rad), cp = std::cos(incident.phi_rad);
   const double phi_i[1] = {incident.phi_rad};
-  const std::vector<JonesReflection> jones = local_reflection(top, lambda_nm, incident.theta_rad, phi_i);
+  const std::span<const JonesReflection> jones = local_reflection(top, lambda_nm, incident.theta_rad, phi_i);
   Eigen::MatrixXcd amplitudes(static_cast<Eigen::Index>(nodes), 12);
   NodeCurrents out;
-  fill_amplitudes(top, incident, {ct * sp, std::sin(incident.theta_rad), ct * cp}, jones,
+  detail::fill_amplitudes(current_nodes(top), incident, {ct * sp, std::sin(incident.theta_rad), ct * cp}, jones,
                   currents_ == Currents::incident_and_reflected, amplitudes, out.incident_power);
   for (std::size_t m = 0; m < nodes; ++m) {
     const Vec2 v = top.vertices[m + 1];

@@ -1,6 +1,8 @@
 #include "multilayer_reflection.hpp"
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <limits>
 #include <string>
@@ -87,6 +89,71 @@ const LayerProfile& profile_of(const LocalReflection::Request& r) {
   throw Error(std::string(e.what()) + b + stack + "')");
 }
 
+// ε = n² of every medium of each stack, its thicknesses and ambient index, per (profile, λ) of one
+// batch (issue 26): a solver's batch asks for every node's stack once per incident azimuth, at
+// one λ, and reading the media (a mixture's parts behind a pointer) and forming the squares was
+// a third of the lane set-up. The first request of a (profile, λ) fills an entry; the others copy
+// it. Same arithmetic as before, so the same bits. Per thread (reflect() is const and concurrent).
+class StackPermittivities {
+ public:
+  struct Stack {
+    std::size_t layers = 0;
+    std::size_t eps = 0;        // eps_[eps … eps + layers + 1]: ambient, layers, substrate
+    std::size_t thickness = 0;  // thickness_[thickness … thickness + layers − 1]
+    Complex ambient_index;
+    const LayerProfile* profile = nullptr;
+    double lambda_nm = 0.0;
+  };
+
+  // Forgets the previous batch; room for `requests` distinct stacks without rehashing.
+  void begin(std::size_t requests) {
+    stacks_.clear(), eps_.clear(), thickness_.clear();
+    std::size_t size = 16;
+    while (size < 2 * requests) size *= 2;
+    if (slot_.size() < size) slot_.assign(size, kEmpty), used_.clear();
+    for (const std::size_t s : used_) slot_[s] = kEmpty;  // only the slots the last batch filled
+    used_.clear();
+    mask_ = size - 1;
+  }
+
+  std::uint32_t find_or_add(const LocalReflection::Request& r, IndexAtWavelength& index_of) {
+    const LayerProfile& p = profile_of(r);
+    const std::uint64_t key = reinterpret_cast<std::uintptr_t>(&p) ^ std::bit_cast<std::uint64_t>(r.lambda_nm);
+    std::size_t s = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ull) >> 20) & mask_;
+    for (; slot_[s] != kEmpty; s = (s + 1) & mask_) {
+      const Stack& k = stacks_[slot_[s]];
+      if (k.profile == &p && k.lambda_nm == r.lambda_nm) return slot_[s];
+    }
+    index_of.set_wavelength(r.lambda_nm);
+    Stack k{p.layers.size(), eps_.size(), thickness_.size(), index_of(p.ambient), &p, r.lambda_nm};
+    eps_.push_back(k.ambient_index * k.ambient_index);
+    for (const Layer& layer : p.layers) {
+      const Complex n = index_of(layer.material);
+      eps_.push_back(n * n);
+      thickness_.push_back(layer.thickness_nm);
+    }
+    const Complex sub = index_of(p.substrate);
+    eps_.push_back(sub * sub);
+    slot_[s] = static_cast<std::uint32_t>(stacks_.size());
+    used_.push_back(s);
+    stacks_.push_back(k);
+    return slot_[s];
+  }
+
+  const Stack& stack(std::uint32_t i) const { return stacks_[i]; }
+  const Complex* eps(const Stack& k) const { return eps_.data() + k.eps; }
+  const double* thickness(const Stack& k) const { return thickness_.data() + k.thickness; }
+
+ private:
+  static constexpr std::uint32_t kEmpty = 0xFFFFFFFFu;
+  std::vector<Stack> stacks_;
+  std::vector<Complex> eps_;
+  std::vector<double> thickness_;
+  std::vector<std::uint32_t> slot_;  // open addressing, linear probing: index into stacks_
+  std::vector<std::size_t> used_;
+  std::size_t mask_ = 0;
+};
+
 }  // namespace
 
 void MultilayerReflection::reflect(std::span<const Request> requests,
@@ -119,6 +186,21 @@ void MultilayerReflection::reflect(std::span<const Request> requests,
   };
   // Lane buffers: kLanes requests whose stacks have the same layer count go through the
   // vectorised recursion together; the rest through the scalar one.
+  // The cache pays where stacks repeat at one λ (a solver's batch: one λ, each node's stack once
+  // per incident azimuth); a batch of many wavelengths (`bench multilayer`: every request its
+  // own (stack, λ)) fills the lanes straight from the profiles as before.
+  bool one_wavelength = true;
+  for (const Request& r : requests) one_wavelength &= r.lambda_nm == requests.front().lambda_nm;
+  thread_local StackPermittivities cache;
+  thread_local std::vector<std::uint32_t> stack_of;  // cache entry of every request
+  if (one_wavelength) {
+    cache.begin(requests.size());
+    stack_of.resize(requests.size());
+    for (std::size_t i = 0; i < requests.size(); ++i) stack_of[i] = cache.find_or_add(requests[i], index_of);
+  }
+  auto layers_of = [&](std::size_t i) {
+    return one_wavelength ? cache.stack(stack_of[i]).layers : profile_of(requests[i]).layers.size();
+  };
   std::vector<Complex> eps;
   std::vector<double> lane_thickness;
   double k0[kLanes], sin2[kLanes];
@@ -126,10 +208,9 @@ void MultilayerReflection::reflect(std::span<const Request> requests,
 
   std::size_t i = 0;
   while (i < requests.size()) {
-    const std::size_t layers = profile_of(requests[i]).layers.size();
+    const std::size_t layers = layers_of(i);
     std::size_t run = 1;
-    while (run < kLanes && i + run < requests.size() &&
-           profile_of(requests[i + run]).layers.size() == layers) {
+    while (run < kLanes && i + run < requests.size() && layers_of(i + run) == layers) {
       ++run;
     }
     if (run == kLanes) {
@@ -138,16 +219,26 @@ void MultilayerReflection::reflect(std::span<const Request> requests,
       for (std::size_t l = 0; l < kLanes; ++l) {
         const Request& r = requests[i + l];
         const LayerProfile& p = *r.profile;
-        index_of.set_wavelength(r.lambda_nm);
-        const Complex ambient = index_of(p.ambient);
-        eps[l] = ambient * ambient;
-        for (std::size_t j = 0; j < layers; ++j) {
-          const Complex n = index_of(p.layers[j].material);
-          eps[(j + 1) * kLanes + l] = n * n;
-          lane_thickness[j * kLanes + l] = p.layers[j].thickness_nm;
+        Complex ambient;
+        if (one_wavelength) {
+          const StackPermittivities::Stack& k = cache.stack(stack_of[i + l]);
+          const Complex* stack_eps = cache.eps(k);
+          const double* stack_thickness = cache.thickness(k);
+          for (std::size_t j = 0; j < layers + 2; ++j) eps[j * kLanes + l] = stack_eps[j];
+          for (std::size_t j = 0; j < layers; ++j) lane_thickness[j * kLanes + l] = stack_thickness[j];
+          ambient = k.ambient_index;
+        } else {
+          index_of.set_wavelength(r.lambda_nm);
+          ambient = index_of(p.ambient);
+          eps[l] = ambient * ambient;
+          for (std::size_t j = 0; j < layers; ++j) {
+            const Complex n = index_of(p.layers[j].material);
+            eps[(j + 1) * kLanes + l] = n * n;
+            lane_thickness[j * kLanes + l] = p.layers[j].thickness_nm;
+          }
+          const Complex sub = index_of(p.substrate);
+          eps[(layers + 1) * kLanes + l] = sub * sub;
         }
-        const Complex sub = index_of(p.substrate);
-        eps[(layers + 1) * kLanes + l] = sub * sub;
         k0[l] = 2.0 * 3.14159265358979323846 / r.lambda_nm;
         sin2[l] = ambient_sin2(ambient, cos_alpha(r.incidence), p);
       }
