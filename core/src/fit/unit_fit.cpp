@@ -41,13 +41,16 @@ constexpr double kSecondMass = 0.15;
 
 std::vector<double> smoothed(const std::vector<double>& u) {
   const int n = static_cast<int>(u.size()), half = static_cast<int>(std::ceil(3.0 * kSmoothBins));
+  // Gaussian taps w_d = exp(−d²/(2 s²)) once, not per output bin (the same values).
+  std::vector<double> taps(static_cast<std::size_t>(2 * half + 1));
+  for (int d = -half; d <= half; ++d) taps[static_cast<std::size_t>(d + half)] = std::exp(-0.5 * d * d / (kSmoothBins * kSmoothBins));
   std::vector<double> out(u.size());
   for (int k = 0; k < n; ++k) {
     double s = 0, ws = 0;
     for (int d = -half; d <= half; ++d) {
       const int j = k + d;
       if (j < 0 || j >= n) continue;  // renormalised at the ends of (−90°, 90°)
-      const double w = std::exp(-0.5 * d * d / (kSmoothBins * kSmoothBins));
+      const double w = taps[static_cast<std::size_t>(d + half)];
       s += w * u[static_cast<std::size_t>(j)];
       ws += w;
     }
@@ -149,42 +152,50 @@ std::vector<std::vector<double>> noise_columns(const UnitInput& in, const Lobe& 
     hx /= len;
     weight[r] = lobe::ggx_d(hx, mean_lobe.m) * lobe::smith_g1(wi.z, mean_lobe.m) * lobe::smith_g1(z, mean_lobe.m);
   }
+  // The sums below run over instances in order, as the definitions do, but with the instance
+  // loop outermost: each instance's field is then read front to back (the instance-innermost
+  // loops of before jumped between 50 arrays per sample and waited on memory).
+  using Rows = std::array<std::vector<double>, 3>;  // [component][row]
   for (int p = 0; p < 2; ++p) {
-    // Dominant component: max Σ_x (μ_Re² + μ_Im² + v_Re + v_Im).
-    int best_c = 0;
-    double best = -1;
-    std::array<std::vector<double>, 3> mre, mim, vre, vim;
-    for (int c = 0; c < 3; ++c) {
-      mre[c].assign(count, 0), mim[c].assign(count, 0), vre[c].assign(count, 0), vim[c].assign(count, 0);
+    Rows mre, mim, vre, vim;
+    for (int c = 0; c < 3; ++c) mre[c].assign(count, 0), mim[c].assign(count, 0), vre[c].assign(count, 0), vim[c].assign(count, 0);
+    for (const FarField& ff : in.instances) {
+      const std::array<Complex, 3>* f = ff.field[p].data() + first;
+      for (std::size_t r = 0; r < count; ++r)
+        for (int c = 0; c < 3; ++c) mre[c][r] += f[r][c].real(), mim[c][r] += f[r][c].imag();
+    }
+    for (int c = 0; c < 3; ++c)
+      for (std::size_t r = 0; r < count; ++r) mre[c][r] /= static_cast<double>(n_inst), mim[c][r] /= static_cast<double>(n_inst);
+    for (const FarField& ff : in.instances) {
+      const std::array<Complex, 3>* f = ff.field[p].data() + first;
       for (std::size_t r = 0; r < count; ++r) {
-        for (const FarField& ff : in.instances) {
-          mre[c][r] += ff.field[p][first + r][c].real();
-          mim[c][r] += ff.field[p][first + r][c].imag();
-        }
-        mre[c][r] /= static_cast<double>(n_inst);
-        mim[c][r] /= static_cast<double>(n_inst);
-        for (const FarField& ff : in.instances) {
-          const double dr = ff.field[p][first + r][c].real() - mre[c][r], di = ff.field[p][first + r][c].imag() - mim[c][r];
+        for (int c = 0; c < 3; ++c) {
+          const double dr = f[r][c].real() - mre[c][r], di = f[r][c].imag() - mim[c][r];
           vre[c][r] += dr * dr;
           vim[c][r] += di * di;
         }
-        vre[c][r] /= static_cast<double>(n_inst - 1);
-        vim[c][r] /= static_cast<double>(n_inst - 1);
       }
+    }
+    // Dominant component: max Σ_x (μ_Re² + μ_Im² + v_Re + v_Im).
+    int best_c = 0;
+    double best = -1;
+    for (int c = 0; c < 3; ++c) {
+      for (std::size_t r = 0; r < count; ++r) vre[c][r] /= static_cast<double>(n_inst - 1), vim[c][r] /= static_cast<double>(n_inst - 1);
       double score = 0;
       for (std::size_t r = 0; r < count; ++r) score += mre[c][r] * mre[c][r] + mim[c][r] * mim[c][r] + vre[c][r] + vim[c][r];
       if (score > best) best = score, best_c = c;
     }
     const int c = best_c;
     for (int part = 0; part < 2; ++part) {
+      const std::vector<double>& mu = part == 0 ? mre[c] : mim[c];
+      std::vector<double> sd(count);  // √var once per row, not per instance (the same value)
+      for (std::size_t r = 0; r < count; ++r) sd[r] = std::sqrt(part == 0 ? vre[c][r] : vim[c][r]);
       for (const FarField& ff : in.instances) {
+        const std::array<Complex, 3>* f = ff.field[p].data() + first;
         std::vector<double> col(count);
         for (std::size_t r = 0; r < count; ++r) {
-          const auto v = ff.field[p][first + r][c];
-          const double mu = part == 0 ? mre[c][r] : mim[c][r];
-          const double var = part == 0 ? vre[c][r] : vim[c][r];
-          const double x = part == 0 ? v.real() : v.imag();
-          col[r] = var > 0 ? (x - mu) / std::sqrt(var) * weight[r] : 0.0;
+          const double x = part == 0 ? f[r][c].real() : f[r][c].imag();
+          col[r] = sd[r] > 0 ? (x - mu[r]) / sd[r] * weight[r] : 0.0;
         }
         columns.push_back(std::move(col));
       }
