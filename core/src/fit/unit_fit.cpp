@@ -152,27 +152,33 @@ std::vector<std::vector<double>> noise_columns(const UnitInput& in, const Lobe& 
     hx /= len;
     weight[r] = lobe::ggx_d(hx, mean_lobe.m) * lobe::smith_g1(wi.z, mean_lobe.m) * lobe::smith_g1(z, mean_lobe.m);
   }
-  // The sums below run over instances in order, as the definitions do, but with the instance
-  // loop outermost: each instance's field is then read front to back (the instance-innermost
-  // loops of before jumped between 50 arrays per sample and waited on memory).
+  // The sums below run over instances in order, as the definitions do, but row block by row
+  // block with the instance loop inside: a block of 32 rows of all instances (75 KB) stays in
+  // cache between the mean and the variance pass, and each instance's field is read front to
+  // back (the instance-innermost loops of before jumped between 50 arrays per sample and waited
+  // on memory; the group's far fields, 137 MB at production, are far out of cache).
+  constexpr std::size_t kRowBlock = 32;
   using Rows = std::array<std::vector<double>, 3>;  // [component][row]
   for (int p = 0; p < 2; ++p) {
     Rows mre, mim, vre, vim;
     for (int c = 0; c < 3; ++c) mre[c].assign(count, 0), mim[c].assign(count, 0), vre[c].assign(count, 0), vim[c].assign(count, 0);
-    for (const FarField& ff : in.instances) {
-      const std::array<Complex, 3>* f = ff.field[p].data() + first;
-      for (std::size_t r = 0; r < count; ++r)
-        for (int c = 0; c < 3; ++c) mre[c][r] += f[r][c].real(), mim[c][r] += f[r][c].imag();
-    }
-    for (int c = 0; c < 3; ++c)
-      for (std::size_t r = 0; r < count; ++r) mre[c][r] /= static_cast<double>(n_inst), mim[c][r] /= static_cast<double>(n_inst);
-    for (const FarField& ff : in.instances) {
-      const std::array<Complex, 3>* f = ff.field[p].data() + first;
-      for (std::size_t r = 0; r < count; ++r) {
-        for (int c = 0; c < 3; ++c) {
-          const double dr = f[r][c].real() - mre[c][r], di = f[r][c].imag() - mim[c][r];
-          vre[c][r] += dr * dr;
-          vim[c][r] += di * di;
+    for (std::size_t r0 = 0; r0 < count; r0 += kRowBlock) {
+      const std::size_t r1 = std::min(count, r0 + kRowBlock);
+      for (const FarField& ff : in.instances) {
+        const std::array<Complex, 3>* f = ff.field[p].data() + first;
+        for (std::size_t r = r0; r < r1; ++r)
+          for (int c = 0; c < 3; ++c) mre[c][r] += f[r][c].real(), mim[c][r] += f[r][c].imag();
+      }
+      for (int c = 0; c < 3; ++c)
+        for (std::size_t r = r0; r < r1; ++r) mre[c][r] /= static_cast<double>(n_inst), mim[c][r] /= static_cast<double>(n_inst);
+      for (const FarField& ff : in.instances) {
+        const std::array<Complex, 3>* f = ff.field[p].data() + first;
+        for (std::size_t r = r0; r < r1; ++r) {
+          for (int c = 0; c < 3; ++c) {
+            const double dr = f[r][c].real() - mre[c][r], di = f[r][c].imag() - mim[c][r];
+            vre[c][r] += dr * dr;
+            vim[c][r] += di * di;
+          }
         }
       }
     }
@@ -185,19 +191,21 @@ std::vector<std::vector<double>> noise_columns(const UnitInput& in, const Lobe& 
       for (std::size_t r = 0; r < count; ++r) score += mre[c][r] * mre[c][r] + mim[c][r] * mim[c][r] + vre[c][r] + vim[c][r];
       if (score > best) best = score, best_c = c;
     }
+    // Columns: the real parts of all instances, then the imaginary parts, both filled in one
+    // read of each instance's field.
     const int c = best_c;
-    for (int part = 0; part < 2; ++part) {
-      const std::vector<double>& mu = part == 0 ? mre[c] : mim[c];
-      std::vector<double> sd(count);  // √var once per row, not per instance (the same value)
-      for (std::size_t r = 0; r < count; ++r) sd[r] = std::sqrt(part == 0 ? vre[c][r] : vim[c][r]);
-      for (const FarField& ff : in.instances) {
-        const std::array<Complex, 3>* f = ff.field[p].data() + first;
-        std::vector<double> col(count);
-        for (std::size_t r = 0; r < count; ++r) {
-          const double x = part == 0 ? f[r][c].real() : f[r][c].imag();
-          col[r] = sd[r] > 0 ? (x - mu[r]) / sd[r] * weight[r] : 0.0;
-        }
-        columns.push_back(std::move(col));
+    std::vector<double> sd_re(count), sd_im(count);  // √var once per row, not per instance (the same value)
+    for (std::size_t r = 0; r < count; ++r) sd_re[r] = std::sqrt(vre[c][r]), sd_im[r] = std::sqrt(vim[c][r]);
+    const std::size_t base = columns.size();
+    columns.resize(base + 2 * n_inst);
+    for (std::size_t i = 0; i < n_inst; ++i) {
+      const std::array<Complex, 3>* f = in.instances[i].field[p].data() + first;
+      std::vector<double>& re = columns[base + i];
+      std::vector<double>& im = columns[base + n_inst + i];
+      re.resize(count), im.resize(count);
+      for (std::size_t r = 0; r < count; ++r) {
+        re[r] = sd_re[r] > 0 ? (f[r][c].real() - mre[c][r]) / sd_re[r] * weight[r] : 0.0;
+        im[r] = sd_im[r] > 0 ? (f[r][c].imag() - mim[c][r]) / sd_im[r] * weight[r] : 0.0;
       }
     }
   }
@@ -206,14 +214,32 @@ std::vector<std::vector<double>> noise_columns(const UnitInput& in, const Lobe& 
 
 }  // namespace
 
+namespace {
+// sin φ_o, cos φ_o at the cone sum's midpoints φ_o = −π/2 + (k + ½) π / count: the same for every
+// lobe and θ_i, so tabulated once for the default count (two cone sums per unit, four per node in
+// the assembly).
+struct ConeMidpoints {
+  std::vector<double> sin_phi, cos_phi;
+  explicit ConeMidpoints(int count)  // count ≥ 0
+      : sin_phi(static_cast<std::size_t>(count)), cos_phi(static_cast<std::size_t>(count)) {
+    for (int k = 0; k < count; ++k) {
+      const double phi_o = -0.5 * kPi + (k + 0.5) * kPi / count;
+      sin_phi[static_cast<std::size_t>(k)] = std::sin(phi_o);
+      cos_phi[static_cast<std::size_t>(k)] = std::cos(phi_o);
+    }
+  }
+};
+}  // namespace
+
 double cone_lobe_sum(const Lobe& lobe, double theta_i_rad, int midpoints) {
+  static const ConeMidpoints default_midpoints(2000);
+  const ConeMidpoints other(midpoints == 2000 ? 0 : std::max(midpoints, 0));
+  const ConeMidpoints& at = midpoints == 2000 ? default_midpoints : other;
   const LobeEvaluator value(lobe, theta_i_rad);
   const double ct = std::cos(-theta_i_rad), st = std::sin(-theta_i_rad);
   double s = 0;
-  for (int k = 0; k < midpoints; ++k) {
-    const double phi_o = -0.5 * kPi + (k + 0.5) * kPi / midpoints;
-    s += value(Direction{ct * std::sin(phi_o), st, ct * std::cos(phi_o)});  // direction_from_angles(−θ_i, φ_o)
-  }
+  for (std::size_t k = 0; k < at.sin_phi.size(); ++k)
+    s += value(Direction{ct * at.sin_phi[k], st, ct * at.cos_phi[k]});  // direction_from_angles(−θ_i, φ_o)
   return s;
 }
 
