@@ -8,6 +8,7 @@
 // (columns in order, t = 0 … N − 1 with index (t + lag) mod N), so each equals it bit for bit; the
 // 8 independent accumulators, not the adds of one sum, now bound the loop (4 MAC per cycle
 // instead of 1 with the former 4 scalar sums; 32 lags cover every unit above in one pass).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <vector>
@@ -15,44 +16,28 @@
 #include "plumage/error.hpp"
 #include "plumage/fitter.hpp"
 #include "plumage/simd_math.hpp"
+#include "noise_columns.hpp"
 
 namespace plumage {
 
-namespace {
+namespace detail {
 
-constexpr std::size_t kLagBlock = 32;  // lags per pass: 8 vectors of 4
-
-// The mean-removed columns, each followed by its first kLagBlock samples again (x[t] for
-// t < N + kLagBlock is x[t mod N]), so lag ℓ < kLagBlock at t reads x[t + ℓ] without a wrap.
-struct CentredColumns {
-  std::size_t n = 0, stride = 0, count = 0;
-  std::vector<double> x;
-  const double* column(std::size_t k) const { return x.data() + k * stride; }
-};
-
-CentredColumns centred(const std::vector<std::vector<double>>& columns) {
-  if (columns.empty() || columns.front().size() < 4) throw Error("correlation: need columns of at least 4 samples");
-  CentredColumns c;
-  c.n = columns.front().size();
-  c.stride = c.n + kLagBlock;
-  c.count = columns.size();
-  c.x.resize(c.count * c.stride);
+void centre(NoiseColumns& c) {
   for (std::size_t k = 0; k < c.count; ++k) {
-    const auto& col = columns[k];
-    if (col.size() != c.n) throw Error("correlation: columns differ in length");
+    double* x = c.column(k);
     double mean = 0;
-    for (double v : col) mean += v;
-    mean /= static_cast<double>(col.size());
-    double* dst = c.x.data() + k * c.stride;
-    for (std::size_t t = 0; t < c.n; ++t) dst[t] = col[t] - mean;
-    for (std::size_t t = c.n; t < c.stride; ++t) dst[t] = dst[(t - c.n) % c.n];
+    for (std::size_t t = 0; t < c.n; ++t) mean += x[t];
+    mean /= static_cast<double>(c.n);
+    for (std::size_t t = 0; t < c.n; ++t) x[t] -= mean;
+    for (std::size_t t = c.n; t < c.stride; ++t) x[t] = x[(t - c.n) % c.n];
   }
-  return c;
 }
+
+namespace {
 
 // Σ over columns of the circular autocovariance at lags lag0 … lag0 + 31 (the common divisor
 // N − 1 cancels in the normalisation by lag 0); lags ≥ N give 0.
-std::array<double, kLagBlock> summed_autocovariance32(const CentredColumns& c, std::size_t lag0) {
+std::array<double, kLagBlock> summed_autocovariance32(const NoiseColumns& c, std::size_t lag0) {
   using simd::v4d;
   const std::size_t n = c.n;
   std::vector<double> shifted(lag0 > 0 ? c.stride : 0);
@@ -82,8 +67,8 @@ std::array<double, kLagBlock> summed_autocovariance32(const CentredColumns& c, s
 
 }  // namespace
 
-double correlation_length(const std::vector<std::vector<double>>& columns, double spacing) {
-  const auto c = centred(columns);
+double correlation_length(const NoiseColumns& c, double spacing) {
+  if (c.empty() || c.n < 4) throw Error("correlation: need columns of at least 4 samples");
   const std::size_t n = c.n;
   std::array<double, kLagBlock> block = summed_autocovariance32(c, 0);
   const double c0 = block[0];
@@ -103,8 +88,8 @@ double correlation_length(const std::vector<std::vector<double>>& columns, doubl
   return static_cast<double>(n / 2 - 1) * spacing;
 }
 
-std::vector<double> mean_autocorrelation(const std::vector<std::vector<double>>& columns) {
-  const auto c = centred(columns);
+std::vector<double> mean_autocorrelation(const NoiseColumns& c) {
+  if (c.empty() || c.n < 4) throw Error("correlation: need columns of at least 4 samples");
   const std::size_t n = c.n, half = n / 2;
   std::vector<double> acf(n, 0.0);
   for (std::size_t lag0 = 0; lag0 < half; lag0 += kLagBlock) {
@@ -119,6 +104,29 @@ std::vector<double> mean_autocorrelation(const std::vector<std::vector<double>>&
   // Lag N/2: mean of its neighbours (lags N/2 − 1 and N/2 + 1, equal after mirroring).
   acf[half] = 0.5 * (acf[half - 1] + acf[(half + 1) % n]);
   return acf;
+}
+
+}  // namespace detail
+
+namespace {
+detail::NoiseColumns centred(const std::vector<std::vector<double>>& columns) {
+  if (columns.empty() || columns.front().size() < 4) throw Error("correlation: need columns of at least 4 samples");
+  detail::NoiseColumns c(columns.size(), columns.front().size());
+  for (std::size_t k = 0; k < c.count; ++k) {
+    if (columns[k].size() != c.n) throw Error("correlation: columns differ in length");
+    std::copy(columns[k].begin(), columns[k].end(), c.column(k));
+  }
+  detail::centre(c);
+  return c;
+}
+}  // namespace
+
+double correlation_length(const std::vector<std::vector<double>>& columns, double spacing) {
+  return detail::correlation_length(centred(columns), spacing);
+}
+
+std::vector<double> mean_autocorrelation(const std::vector<std::vector<double>>& columns) {
+  return detail::mean_autocorrelation(centred(columns));
 }
 
 }  // namespace plumage

@@ -9,6 +9,7 @@
 #include "plumage/diagnostics.hpp"
 #include "plumage/error.hpp"
 #include "plumage/fitter.hpp"
+#include "noise_columns.hpp"
 
 namespace plumage {
 
@@ -134,11 +135,12 @@ double sum(const std::vector<double>& v) {
 // Noise data (spec §4.6 steps 1–3): per polarization the dominant field component, its
 // normalised fluctuations (Re and Im per instance), weighted by the mean lobe's shape
 // D(h; m_eff) G1(ω_i') G1(ω_o) at ω_o = (x, −sin θ_i, √(1 − x² − sin² θ_i)).
-std::vector<std::vector<double>> noise_columns(const UnitInput& in, const Lobe& mean_lobe) {
+detail::NoiseColumns noise_columns(const UnitInput& in, const Lobe& mean_lobe) {
   const std::size_t first = in.pattern_count, count = in.instances.front().phi_o_rad.size() - first;
   const std::size_t n_inst = in.instances.size();
-  std::vector<std::vector<double>> columns;
-  if (count < 4 || n_inst < 2) return columns;
+  if (count < 4 || n_inst < 2) return {};
+  // Columns in the order p = 0 Re (instances in order), p = 0 Im, p = 1 Re, p = 1 Im.
+  detail::NoiseColumns columns(4 * n_inst, count);
   const double ct = std::cos(in.theta_i_rad), st = std::sin(in.theta_i_rad);
   // Lobe weight per row, F = 1 and without D_y (h_y = 0 on the cone) and 1/(4 ω_i'_z).
   std::vector<double> weight(count);
@@ -196,13 +198,11 @@ std::vector<std::vector<double>> noise_columns(const UnitInput& in, const Lobe& 
     const int c = best_c;
     std::vector<double> sd_re(count), sd_im(count);  // √var once per row, not per instance (the same value)
     for (std::size_t r = 0; r < count; ++r) sd_re[r] = std::sqrt(vre[c][r]), sd_im[r] = std::sqrt(vim[c][r]);
-    const std::size_t base = columns.size();
-    columns.resize(base + 2 * n_inst);
+    const std::size_t base = 2 * n_inst * static_cast<std::size_t>(p);
     for (std::size_t i = 0; i < n_inst; ++i) {
       const std::array<Complex, 3>* f = in.instances[i].field[p].data() + first;
-      std::vector<double>& re = columns[base + i];
-      std::vector<double>& im = columns[base + n_inst + i];
-      re.resize(count), im.resize(count);
+      double* re = columns.column(base + i);
+      double* im = columns.column(base + n_inst + i);
       for (std::size_t r = 0; r < count; ++r) {
         re[r] = sd_re[r] > 0 ? (f[r][c].real() - mre[c][r]) / sd_re[r] * weight[r] : 0.0;
         im[r] = sd_im[r] > 0 ? (f[r][c].imag() - mim[c][r]) / sd_im[r] * weight[r] : 0.0;
@@ -350,13 +350,14 @@ UnitFit fit_unit(const UnitInput& in) {
 
   // §4.6 correlation length on the projected samples (spacing 2/N in the direction cosine).
   mean_lobe.scale = 1.0;
-  const auto columns = noise_columns(in, mean_lobe);
+  auto columns = noise_columns(in, mean_lobe);
   if (!columns.empty()) {
+    detail::centre(columns);
     const std::size_t first = np, count = phi_all.size() - np;
     const double x0 = ct * std::sin(phi_all[first]), x1 = ct * std::sin(phi_all[first + count - 1]);
     const double spacing = (x1 - x0) / static_cast<double>(count - 1);
-    out.node.correlation = correlation_length(columns, spacing);
-    if (in.want_autocorrelation) out.autocorrelation = mean_autocorrelation(columns);
+    out.node.correlation = detail::correlation_length(columns, spacing);
+    if (in.want_autocorrelation) out.autocorrelation = detail::mean_autocorrelation(columns);
   } else {
     out.node.correlation = 0.0;
   }
