@@ -129,7 +129,7 @@ void refine(const ConeResidual& f, double& m, double& phi_c, bool phi_fixed) {
 // The coarse search evaluates the objective at 28 m × 89 φ_c: G1(cos θ_i cos φ_o; m) does not
 // depend on φ_c and h_x = sin((φ_c + φ_o)/2) not on m, so both are tabulated once. The 28 m
 // run as 7 vectors of 4 (one lane per m), so each m's sums take their terms in the order
-// ConeResidual does (k = 0 … n − 1), with the same operations per term.
+// ConeResidual does (k = 0 … n − 1), with the same operations per term (h_x from the vector sin).
 struct CoarseTable {
   using v4d = simd::v4d;
   static constexpr std::size_t kVectors = 7;  // 28 m candidates
@@ -147,10 +147,20 @@ struct CoarseTable {
   // Best m on the coarse list at fixed φ_c.
   double best_m(double phi_c, double& best) const {
     const std::size_t n = f.phi_o.size();
+    // h_x = sin((φ_c + φ_o)/2) four samples at a time (simd::sincos, ≤ 2 ulp from libm's sin:
+    // the grid only picks Ceres' starting point, which ConeResidual then refines with libm).
+    std::vector<double> hx_k((n + 3) / 4 * 4);
+    for (std::size_t k = 0; k < n; k += 4) {
+      v4d arg{};
+      for (std::size_t l = 0; l < 4; ++l) arg[l] = k + l < n ? (phi_c + f.phi_o[k + l]) * 0.5 : 0.0;
+      v4d sin_arg, cos_arg;
+      simd::sincos(arg, sin_arg, cos_arg);
+      for (std::size_t l = 0; l < 4; ++l) hx_k[k + l] = sin_arg[l];
+    }
     std::vector<std::array<v4d, kVectors>> g(n);
     std::array<v4d, kVectors> sum_g{};
     for (std::size_t k = 0; k < n; ++k) {
-      const v4d hx = simd::splat(std::sin((phi_c + f.phi_o[k]) * 0.5));
+      const v4d hx = simd::splat(hx_k[k]);
       for (std::size_t j = 0; j < kVectors; ++j) {
         // ggx_d_t(hx, m) lane by lane: m² / (π q q), q = m² + (1 − m²) h_x².
         const v4d q = m2[j] + (1.0 - m2[j]) * hx * hx;
