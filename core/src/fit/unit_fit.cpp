@@ -134,7 +134,8 @@ double sum(const std::vector<double>& v) {
 
 // Noise data (spec §4.6 steps 1–3): per polarization the dominant field component, its
 // normalised fluctuations (Re and Im per instance), weighted by the mean lobe's shape
-// D(h; m_eff) G1(ω_i') G1(ω_o) at ω_o = (x, −sin θ_i, √(1 − x² − sin² θ_i)).
+// D(h; m_eff) G1(ω_i') G1(ω_o) at ω_o = (x, −sin θ_i, √(1 − x² − sin² θ_i)); returned centred
+// (each column's mean removed, spec §4.6 step 4).
 detail::NoiseColumns noise_columns(const UnitInput& in, const Lobe& mean_lobe) {
   const std::size_t first = in.pattern_count, count = in.instances.front().phi_o_rad.size() - first;
   const std::size_t n_inst = in.instances.size();
@@ -209,6 +210,7 @@ detail::NoiseColumns noise_columns(const UnitInput& in, const Lobe& mean_lobe) {
       }
     }
   }
+  detail::centre(columns);
   return columns;
 }
 
@@ -350,9 +352,8 @@ UnitFit fit_unit(const UnitInput& in) {
 
   // §4.6 correlation length on the projected samples (spacing 2/N in the direction cosine).
   mean_lobe.scale = 1.0;
-  auto columns = noise_columns(in, mean_lobe);
+  const auto columns = noise_columns(in, mean_lobe);
   if (!columns.empty()) {
-    detail::centre(columns);
     const std::size_t first = np, count = phi_all.size() - np;
     const double x0 = ct * std::sin(phi_all[first]), x1 = ct * std::sin(phi_all[first + count - 1]);
     const double spacing = (x1 - x0) / static_cast<double>(count - 1);
