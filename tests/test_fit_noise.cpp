@@ -111,3 +111,52 @@ TEST_CASE("noise pool: zero mean, unit variance, target autocorrelation, determi
   CHECK(again.functions == pool.functions);
   CHECK(synthesize_noise_pool(acf, 4, 1235).functions != std::vector<float>(pool.functions.begin(), pool.functions.begin() + 4 * n));
 }
+
+namespace {
+// The plain definitions of spec §4.6 steps 4–5 and §4.8 step 2, with the index (t + lag) mod N,
+// as the reference for the blocked sums of correlation.cpp.
+std::vector<double> plain_summed_autocovariance(std::vector<std::vector<double>> c, std::size_t lags) {
+  for (auto& col : c) {
+    double mean = 0;
+    for (double v : col) mean += v;
+    mean /= static_cast<double>(col.size());
+    for (double& v : col) v -= mean;
+  }
+  std::vector<double> s(lags, 0.0);
+  const std::size_t n = c.front().size();
+  for (std::size_t lag = 0; lag < lags; ++lag)
+    for (const auto& col : c)
+      for (std::size_t t = 0; t < n; ++t) s[lag] += col[t] * col[(t + lag) % n];
+  return s;
+}
+
+double plain_correlation_length(const std::vector<std::vector<double>>& c, double spacing) {
+  const std::size_t n = c.front().size();
+  const auto s = plain_summed_autocovariance(c, n / 2);
+  double prev = 1.0;
+  for (std::size_t lag = 1; lag < n / 2; ++lag) {
+    const double rho = s[lag] / s[0];
+    if (rho < std::exp(-1.0)) return (static_cast<double>(lag - 1) + (prev - std::exp(-1.0)) / (prev - rho)) * spacing;
+    prev = rho;
+  }
+  return static_cast<double>(n / 2 - 1) * spacing;
+}
+}  // namespace
+
+TEST_CASE("correlation length and autocorrelation equal the plain circular sums", "[fit][fit-noise]") {
+  // Lengths crossing e⁻¹ in the first block of 32 lags, in a later one (a = 0.99: ~100 lags) and
+  // never (a = 0.9999 on 64 samples); column lengths odd, even, shorter than a block.
+  struct Case { double a; int columns, n; };
+  for (const Case& k : {Case{0.5, 7, 1024}, Case{0.95, 20, 1000}, Case{0.99, 10, 1025}, Case{0.9999, 5, 64},
+                        Case{0.7, 3, 6}, Case{0.8, 4, 37}}) {
+    const auto cols = ar1_columns(k.a, k.columns, k.n, 17);
+    INFO("a = " << k.a << ", n = " << k.n);
+    const double expected = plain_correlation_length(cols, 0.5);
+    CHECK(correlation_length(cols, 0.5) == Approx(expected).epsilon(1e-12));
+    if (k.n % 2 == 0) {
+      const auto acf = mean_autocorrelation(cols);
+      const auto s = plain_summed_autocovariance(cols, static_cast<std::size_t>(k.n / 2));
+      for (int lag = 0; lag < k.n / 2; ++lag) CHECK(acf[lag] == Approx(s[lag] / s[0]).margin(1e-13));
+    }
+  }
+}

@@ -13,10 +13,12 @@
 #include <ceres/ceres.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
 #include "plumage/fitter.hpp"
+#include "plumage/simd_math.hpp"
 
 namespace plumage {
 
@@ -32,18 +34,32 @@ T ggx_d_t(T hx, T m) {
   return m2 / (T(kPi) * q * q);
 }
 
+// tan² θ_o = (1 − cos²)/cos² of a direction, or −1 below the horizon (G1 = 0).
+double tan2_or_below(double cos_z) {
+  if (cos_z <= 0.0) return -1.0;
+  return (1.0 - cos_z * cos_z) / (cos_z * cos_z);
+}
+
+// Smith G1 from tan² θ (tan2_or_below): 2 / (1 + √(1 + m² tan² θ)).
 template <class T>
-T smith_g1_t(double cos_z, T m) {
-  if (cos_z <= 0.0) return T(0.0);
-  const double t2 = (1.0 - cos_z * cos_z) / (cos_z * cos_z);
+T smith_g1_t(double t2, T m) {
+  if (t2 < 0.0) return T(0.0);
   return T(2.0) / (T(1.0) + sqrt(T(1.0) + m * m * T(t2)));
 }
 
-// Energy-matched residuals r_k = U_k − G_k ΣU/ΣG for parameters (m, φ_c).
+// Energy-matched residuals r_k = U_k − G_k ΣU/ΣG for parameters (m, φ_c). tan² of each
+// sample's ω_o (ω_o,z = cos θ_i cos φ_o,k) is tabulated once: Ceres evaluates the residuals
+// ~10–50 times per fit, and the cosine per sample was a third of each evaluation.
 struct ConeResidual {
   double cos_theta;
   std::span<const double> phi_o, u;
   double sum_u;
+  std::vector<double> tan2_o;
+
+  ConeResidual(double cos_theta_i, std::span<const double> phi_o_rad, std::span<const double> pattern, double sum)
+      : cos_theta(cos_theta_i), phi_o(phi_o_rad), u(pattern), sum_u(sum), tan2_o(phi_o_rad.size()) {
+    for (std::size_t k = 0; k < tan2_o.size(); ++k) tan2_o[k] = tan2_or_below(cos_theta * std::cos(phi_o[k]));
+  }
 
   template <class T>
   bool operator()(const T* m, const T* phi_c, T* r) const {
@@ -52,7 +68,7 @@ struct ConeResidual {
     T sum_g(0.0);
     const std::size_t n = phi_o.size();
     for (std::size_t k = 0; k < n; ++k) {
-      const T g = ggx_d_t(sin((phi_c[0] + T(phi_o[k])) * T(0.5)), m[0]) * smith_g1_t(cos_theta * std::cos(phi_o[k]), m[0]);
+      const T g = ggx_d_t(sin((phi_c[0] + T(phi_o[k])) * T(0.5)), m[0]) * smith_g1_t(tan2_o[k], m[0]);
       r[k] = g;
       sum_g += g;
     }
@@ -111,41 +127,62 @@ void refine(const ConeResidual& f, double& m, double& phi_c, bool phi_fixed) {
 }
 
 // The coarse search evaluates the objective at 28 m × 89 φ_c: G1(cos θ_i cos φ_o; m) does not
-// depend on φ_c and h_x = sin((φ_c + φ_o)/2) not on m, so both are tabulated once; the sums are
-// then formed exactly as ConeResidual does (same operations, same order: same numbers).
+// depend on φ_c and h_x = sin((φ_c + φ_o)/2) not on m, so both are tabulated once. The 28 m
+// run as 7 vectors of 4 (one lane per m), so each m's sums take their terms in the order
+// ConeResidual does (k = 0 … n − 1), with the same operations per term (h_x from the vector sin).
 struct CoarseTable {
+  using v4d = simd::v4d;
+  static constexpr std::size_t kVectors = 7;  // 28 m candidates
   const ConeResidual& f;
   std::vector<double> ms;
-  std::vector<std::vector<double>> g1;  // [m][k]
-  explicit CoarseTable(const ConeResidual& residual) : f(residual), ms(m_candidates()) {
-    for (double m : ms) {
-      std::vector<double> row(f.phi_o.size());
-      for (std::size_t k = 0; k < row.size(); ++k) row[k] = smith_g1_t(f.cos_theta * std::cos(f.phi_o[k]), m);
-      g1.push_back(std::move(row));
+  std::array<v4d, kVectors> m2;
+  std::vector<std::array<v4d, kVectors>> g1;  // [k][m / 4]
+  explicit CoarseTable(const ConeResidual& residual) : f(residual), ms(m_candidates()), g1(f.phi_o.size()) {
+    static_assert(kVectors * 4 == 28);
+    for (std::size_t a = 0; a < ms.size(); ++a) m2[a / 4][a % 4] = ms[a] * ms[a];
+    for (std::size_t k = 0; k < g1.size(); ++k) {
+      for (std::size_t a = 0; a < ms.size(); ++a) g1[k][a / 4][a % 4] = smith_g1_t(f.tan2_o[k], ms[a]);
     }
   }
   // Best m on the coarse list at fixed φ_c.
   double best_m(double phi_c, double& best) const {
     const std::size_t n = f.phi_o.size();
-    std::vector<double> hx(n), g(n);
-    for (std::size_t k = 0; k < n; ++k) hx[k] = std::sin((phi_c + f.phi_o[k]) * 0.5);
+    // h_x = sin((φ_c + φ_o)/2) four samples at a time (simd::sincos, ≤ 2 ulp from libm's sin:
+    // the grid only picks Ceres' starting point, which ConeResidual then refines with libm).
+    std::vector<double> hx_k((n + 3) / 4 * 4);
+    for (std::size_t k = 0; k < n; k += 4) {
+      v4d arg{};
+      for (std::size_t l = 0; l < 4; ++l) arg[l] = k + l < n ? (phi_c + f.phi_o[k + l]) * 0.5 : 0.0;
+      v4d sin_arg, cos_arg;
+      simd::sincos(arg, sin_arg, cos_arg);
+      for (std::size_t l = 0; l < 4; ++l) hx_k[k + l] = sin_arg[l];
+    }
+    std::vector<std::array<v4d, kVectors>> g(n);
+    std::array<v4d, kVectors> sum_g{};
+    for (std::size_t k = 0; k < n; ++k) {
+      const v4d hx = simd::splat(hx_k[k]);
+      for (std::size_t j = 0; j < kVectors; ++j) {
+        // ggx_d_t(hx, m) lane by lane: m² / (π q q), q = m² + (1 − m²) h_x².
+        const v4d q = m2[j] + (1.0 - m2[j]) * hx * hx;
+        g[k][j] = m2[j] / (kPi * q * q) * g1[k][j];
+        sum_g[j] += g[k][j];
+      }
+    }
+    std::array<v4d, kVectors> scale, v{};
+    for (std::size_t j = 0; j < kVectors; ++j) scale[j] = f.sum_u / sum_g[j];
+    for (std::size_t k = 0; k < n; ++k) {
+      const double u = f.u[k];
+      for (std::size_t j = 0; j < kVectors; ++j) {
+        const v4d r = u - g[k][j] * scale[j];
+        v[j] += r * r;
+      }
+    }
     double m_best = 0.1;
     best = std::numeric_limits<double>::infinity();
     for (std::size_t a = 0; a < ms.size(); ++a) {
-      const double m = ms[a];
-      double sum_g = 0.0;
-      for (std::size_t k = 0; k < n; ++k) {
-        g[k] = ggx_d_t(hx[k], m) * g1[a][k];
-        sum_g += g[k];
-      }
-      if (!(sum_g > 0.0)) continue;  // objective() = ∞
-      const double scale = f.sum_u / sum_g;
-      double v = 0.0;
-      for (std::size_t k = 0; k < n; ++k) {
-        const double r = f.u[k] - g[k] * scale;
-        v += r * r;
-      }
-      if (v < best) best = v, m_best = m;
+      if (!(sum_g[a / 4][a % 4] > 0.0)) continue;  // objective() = ∞
+      const double va = v[a / 4][a % 4];
+      if (va < best) best = va, m_best = ms[a];
     }
     return m_best;
   }
@@ -188,7 +225,7 @@ ConeFit fit_cone_lobe(double theta_i_rad, double phi_i_rad, std::span<const doub
     out.rel_l2 = 0.0;
     return out;
   }
-  const ConeResidual f{std::cos(theta_i_rad), phi_o_rad, pattern, sum_u};
+  const ConeResidual f(std::cos(theta_i_rad), phi_o_rad, pattern, sum_u);
   std::vector<double> r;
   // The coarse search sees every 4th sample only (box-summed, so narrow peaks are not missed):
   // it has to find the basin, Ceres then fits all samples.
@@ -200,7 +237,7 @@ ConeFit fit_cone_lobe(double theta_i_rad, double phi_i_rad, std::span<const doub
   double sum4 = 0;
   for (double u : u4) sum4 += u;
   const bool decimate = phi4.size() >= 20 && sum4 > 0;
-  const ConeResidual coarse = decimate ? ConeResidual{f.cos_theta, phi4, u4, sum4} : f;
+  const ConeResidual coarse = decimate ? ConeResidual(f.cos_theta, phi4, u4, sum4) : f;
 
   // 1. Fit of both parameters: coarse grid, then Ceres.
   const CoarseTable table(coarse);
