@@ -56,7 +56,7 @@ Complex forward_root(Complex g2) {
 constexpr double kDegenerateTolerance = 1e-7;
 
 struct Modes {
-  Mat W, V;
+  Mat W, W_inv, V;  // W_inv = W⁻¹ (block lower triangular for the decoupled modes: cheap)
   Vec gamma;
 };
 
@@ -81,6 +81,7 @@ Modes homogeneous_modes(Complex eps, const Vec& kx, double ky) {
   m.gamma.resize(2 * n);
   for (int i = 0; i < n; ++i) m.gamma(i) = m.gamma(i + n) = forward_root(eps - kx(i) * kx(i) - ky * ky);
   m.W = Mat::Identity(2 * n, 2 * n);
+  m.W_inv = m.W;
   const Mat I = Mat::Identity(n, n);
   m.V = q_matrix(eps * I, eps * I, kx, ky) * m.gamma.cwiseInverse().asDiagonal();
   return m;
@@ -92,6 +93,7 @@ Modes coupled_modes(const Mat& P, const Mat& Q) {
   Eigen::ComplexEigenSolver<Mat> eig(P * Q);
   Modes m;
   m.W = eig.eigenvectors();
+  m.W_inv = Lu(m.W).inverse();
   m.gamma = eig.eigenvalues().unaryExpr([](Complex g2) { return forward_root(g2); });
   m.V = Q * m.W * m.gamma.cwiseInverse().asDiagonal();
   return m;
@@ -103,18 +105,11 @@ Modes coupled_modes(const Mat& P, const Mat& Q) {
 // (the planar TM and TE ones, γ² shifted by −k_y²) instead of one 2n × 2n: U's modes are (0; w_u),
 // T's are (w_t; y) with (U − t) y = −C w_t, solved in U's eigenbasis (4x fewer flops than the
 // coupled solve; the same γ and fields up to the modes' normalisation, NOTES.md §5).
-Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<Complex>& eps_of, const Vec& kx,
-                  double ky, const SolverSettings& s) {
-  if (slice.boxes.empty()) return homogeneous_modes(eps_of[1], kx, ky);
-  const int M = s.harmonics, n = 2 * M + 1;
-  const Mat E = toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return eps_of[i]; }), M);
-  const Mat Ei = Lu(E).inverse();
-  const Mat A = s.li_rule
-                    ? Lu(toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return 1.0 / eps_of[i]; }), M))
-                          .inverse()
-                    : E;
+// [[ε]], [[ε]]⁻¹ and A depend on λ only: they come from the WavelengthSetup.
+Modes slice_modes(const WavelengthSetup::TypeMatrices& tm, const Vec& kx, double ky, const SolverSettings& s) {
+  const int n = 2 * s.harmonics + 1;
+  const Mat &E = tm.eps, &Ei = tm.eps_inv, &A = tm.a;
   const auto Kx = kx.asDiagonal();
-  const Mat Q = q_matrix(E, A, kx, ky);
   auto coupled = [&] {
     const Mat I = Mat::Identity(n, n);
     Mat P(2 * n, 2 * n);
@@ -122,7 +117,7 @@ Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<
     P.topRightCorner(n, n) = I - Kx * Ei * Kx;
     P.bottomLeftCorner(n, n) = ky * ky * Ei - I;
     P.bottomRightCorner(n, n) = -ky * (Ei * Kx);
-    return coupled_modes(P, Q);
+    return coupled_modes(P, q_matrix(E, A, kx, ky));
   };
   if (s.coupled_eigenproblem) return coupled();
   const Mat KxA = Kx * A;
@@ -132,10 +127,16 @@ Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<
   const Eigen::ComplexEigenSolver<Mat> eig_t(T), eig_u(U);
   const Vec& t = eig_t.eigenvalues();
   const Vec& u = eig_u.eigenvalues();
+  const Mat &Wt = eig_t.eigenvectors(), &Wu = eig_u.eigenvectors();
+  const Lu Wu_lu(Wu);
   Modes m;
   m.W = Mat::Zero(2 * n, 2 * n);
-  m.W.topLeftCorner(n, n) = eig_t.eigenvectors();
-  m.W.bottomRightCorner(n, n) = eig_u.eigenvectors();
+  m.W.topLeftCorner(n, n) = Wt;
+  m.W.bottomRightCorner(n, n) = Wu;
+  m.W_inv = Mat::Zero(2 * n, 2 * n);
+  m.W_inv.topLeftCorner(n, n) = Lu(Wt).inverse();
+  m.W_inv.bottomRightCorner(n, n) = Wu_lu.inverse();
+  Mat G = Mat::Zero(n, n), Wc = Mat::Zero(n, n);  // W's lower-left block Wc = −Wu G (0 at k_y = 0)
   if (ky != 0.0) {
     // Near-coincident t and u (a nearly homogeneous slice) make (U − t)⁻¹ ill-conditioned: solve
     // the coupled problem there instead.
@@ -144,35 +145,54 @@ Modes slice_modes(const Slice& slice, const SlicedCell& cell, const std::vector<
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k)
         if (std::abs(u(j) - t(k)) < kDegenerateTolerance * scale) return coupled();
-    const Lu Wu_lu(eig_u.eigenvectors());
-    Mat G = Wu_lu.solve(ky * (Kx * eig_t.eigenvectors() - Ei * (KxA * eig_t.eigenvectors())));
+    G = Wu_lu.solve(ky * (Kx * Wt - Ei * (KxA * Wt)));
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k) G(j, k) /= u(j) - t(k);
-    m.W.bottomLeftCorner(n, n) = -eig_u.eigenvectors() * G;
+    Wc = -Wu * G;
+    m.W.bottomLeftCorner(n, n) = Wc;
+    // W = [[Wt, 0], [Wc, Wu]] is block lower triangular: W⁻¹'s lower-left block is
+    // −Wu⁻¹ Wc Wt⁻¹ = G Wt⁻¹ (no 2n × 2n LU).
+    m.W_inv.bottomLeftCorner(n, n) = G * m.W_inv.topLeftCorner(n, n);
   }
   m.gamma.resize(2 * n);
   for (int j = 0; j < n; ++j) {
     m.gamma(j) = forward_root(t(j) - ky * ky);
     m.gamma(n + j) = forward_root(u(j) - ky * ky);
   }
-  m.V = Q * m.W * m.gamma.cwiseInverse().asDiagonal();
+  // V = Q W Γ⁻¹ blockwise (Q of solver.hpp): with (K_x² − [[ε]]) = −U, U Wu = Wu diag(u) and
+  // Wc = −Wu G, Q W = [[−k_y K_x Wt + Wu diag(u) G, −Wu diag(u)], [(A − k_y²) Wt + k_y K_x Wc, k_y K_x Wu]]:
+  // two n × n products instead of a 2n × 2n one.
+  const Vec gi = m.gamma.cwiseInverse();
+  const auto gt_inv = gi.head(n).asDiagonal(), gu_inv = gi.tail(n).asDiagonal();
+  const auto Du = u.asDiagonal();
+  m.V.resize(2 * n, 2 * n);
+  Mat top_left = -ky * (Kx * Wt);
+  if (ky != 0.0) top_left.noalias() += Wu * (Du * G);
+  Mat bottom_left = A * Wt;
+  bottom_left += (ky * Kx) * Wc - (ky * ky) * Wt;
+  m.V.topLeftCorner(n, n) = top_left * gt_inv;
+  m.V.bottomLeftCorner(n, n) = bottom_left * gt_inv;
+  m.V.topRightCorner(n, n) = -(Wu * Du) * gu_inv;
+  m.V.bottomRightCorner(n, n) = (ky * Kx) * Wu * gu_inv;
   return m;
 }
 
-// S-matrix of a slice of thickness k0·L between two zero-thickness air gaps (W0 = I, V0).
+// S-matrix of a slice of thickness k0·L between two zero-thickness air gaps (W0 = I, V0). Rumpf's
+// symmetric form has s11 = s22 = D⁻¹(X B A⁻¹ X A − B), s12 = s21 = D⁻¹ X (A − B A⁻¹ B) with
+// A = W⁻¹ + V⁻¹V0, B = W⁻¹ − V⁻¹V0, X = diag(e^{iγk0L}), D = A − X B A⁻¹ X B. D factors as
+// (A + XB) A⁻¹ (A − XB) = (A − XB) A⁻¹ (A + XB), so the even and odd parts of the slab are
+// s11 + s12 = (A − XB)⁻¹ (XA − B) and s11 − s12 = −(A + XB)⁻¹ (XA + B): two LUs, no A⁻¹.
 SMatrix slice_smatrix(const Modes& m, const Mat& V0, double k0L) {
-  const Lu Wlu(m.W), Vlu(m.V);
-  const Mat WiW0 = Wlu.inverse(), ViV0 = Vlu.solve(V0);
-  const Mat A = WiW0 + ViV0, B = WiW0 - ViV0;
+  const Mat ViV0 = Lu(m.V).solve(V0);
   const Vec x = (Complex(0.0, 1.0) * k0L * m.gamma).array().exp();
-  const Lu Alu(A);
-  const Mat XB = x.asDiagonal() * B;
-  const Mat BAi = B * Alu.inverse();
-  const Mat D = A - XB * Alu.solve(XB);
-  const Lu Dlu(D);
+  const Vec one_minus_x = Vec::Ones(x.size()) - x, one_plus_x = Vec::Ones(x.size()) + x;
+  // A − XB = (I − X) W⁻¹ + (I + X) V⁻¹V0 =: a + b, XA − B = b − a; A + XB = c + d, XA + B = c − d.
+  const Mat a = one_minus_x.asDiagonal() * m.W_inv, b = one_plus_x.asDiagonal() * ViV0;
+  const Mat c = one_plus_x.asDiagonal() * m.W_inv, d = one_minus_x.asDiagonal() * ViV0;
+  const Mat even = Lu(a + b).solve(b - a), odd = Lu(c + d).solve(d - c);
   SMatrix s;
-  s.s11 = Dlu.solve(XB * Alu.solve(x.asDiagonal() * A) - B);
-  s.s12 = Dlu.solve(x.asDiagonal() * (A - BAi * B));
+  s.s11 = 0.5 * (even + odd);
+  s.s12 = 0.5 * (even - odd);
   s.s21 = s.s12;
   s.s22 = s.s11;
   return s;
@@ -185,6 +205,22 @@ SMatrix star(const SMatrix& a, const SMatrix& b) {
   const Mat D = Lu(I - b.s11 * a.s22).solve_right(a.s12);
   const Mat F = Lu(I - a.s22 * b.s11).solve_right(b.s21);
   return {a.s11 + D * b.s11 * a.s21, D * b.s12, F * a.s21, b.s22 + F * a.s22 * b.s12};
+}
+
+// a ⊗ swap(a), swap(a) = (a22, a21, a12, a11): a stack followed by the same slices in reverse
+// order. Every slice's S-matrix is direction-symmetric (s11 = s22, s12 = s21), and
+// swap(a ⊗ b) = swap(b) ⊗ swap(a), so swap(a) is the reversed stack. Both inverses of star()
+// become the same (I − a22²)⁻¹ and the result is direction-symmetric: one LU instead of two.
+SMatrix mirror_star(const SMatrix& a) {
+  Mat I_minus = -(a.s22 * a.s22);
+  I_minus.diagonal().array() += 1.0;
+  const Mat D = Lu(std::move(I_minus)).solve_right(a.s12);
+  SMatrix s;
+  s.s12 = D * a.s21;
+  s.s11 = a.s11 + (D * a.s22) * a.s21;
+  s.s21 = s.s12;
+  s.s22 = s.s11;
+  return s;
 }
 
 // The S-matrix of the same layers shifted by half a period: D S D with D = diag((−1)^m) on the
@@ -295,38 +331,78 @@ Vec3 wave_field(Complex ex, Complex ey, Complex kx, double ky, Complex kz) {
   return {ex, ey, -(kx * ex + ky * ey) / kz};
 }
 
+// The S-matrix of a repeated chunk (slices [begin, end)) by star products. A chunk whose slice types
+// read the same backwards (a row of rods symmetric about its centre) is H ⊗ swap(H) for its upper
+// half H (mirror_star), H ⊗ s_mid ⊗ swap(H) for an odd count: half the star products.
+template <class SliceS>
+SMatrix chunk_smatrix(const SlicedCell& cell, std::size_t begin, std::size_t end, SliceS slice_s) {
+  const std::size_t len = end - begin;
+  bool palindrome = len >= 2;
+  for (std::size_t k = 0; k < len / 2 && palindrome; ++k)
+    palindrome = cell.slices[begin + k].type == cell.slices[end - 1 - k].type;
+  const std::size_t upper_end = palindrome ? begin + len / 2 : end;
+  SMatrix chunk = slice_s(cell.slices[begin]);
+  for (std::size_t k = begin + 1; k < upper_end; ++k) chunk = star(chunk, slice_s(cell.slices[k]));
+  if (!palindrome) return chunk;
+  if (len % 2 == 0) return mirror_star(chunk);
+  const SMatrix with_mid = star(chunk, slice_s(cell.slices[upper_end]));
+  return star(with_mid, SMatrix{chunk.s22, chunk.s21, chunk.s12, chunk.s11});
+}
+
 }  // namespace
 
-EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, double phi, const SolverSettings& s) {
-  const int M = s.harmonics, n = 2 * M + 1;
-  const double k0 = wavenumber_per_nm(lambda_nm);
-  // Engine frame (slicing.hpp): ω_i,e = (cosθ sinφ, −sinθ, −cosθ cosφ), incident k = −ω_i,e.
-  const double st = std::sin(theta), ct = std::cos(theta), sp = std::sin(phi), cp = std::cos(phi);
-  const double kx0 = -ct * sp, ky = st, kz0 = ct * cp;
-  Vec kx(n);
-  double kx_max = 0.0;
-  for (int m = -M; m <= M; ++m) {
-    kx(m + M) = kx0 + m * lambda_nm / cell.period_nm;
-    kx_max = std::max(kx_max, std::abs(kx(m + M).real()));
-  }
-  std::vector<Complex> eps_of;
+WavelengthSetup prepare_wavelength(const SlicedCell& cell, double lambda_nm, const SolverSettings& s) {
+  WavelengthSetup w;
+  w.cell = &cell;
+  w.lambda_nm = lambda_nm;
+  w.settings = s;
   for (const Material& mat : cell.materials) {
     const Complex idx = mat.index(lambda_nm);
-    eps_of.push_back(idx * idx);
+    w.eps_of.push_back(idx * idx);
   }
+  const int M = s.harmonics;
+  w.types.resize(static_cast<std::size_t>(cell.n_types));
+  std::vector<bool> seen(static_cast<std::size_t>(cell.n_types), false);
+  for (const Slice& slice : cell.slices) {
+    if (seen[slice.type] || slice.boxes.empty()) continue;
+    seen[slice.type] = true;
+    WavelengthSetup::TypeMatrices& t = w.types[slice.type];
+    t.eps = toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return w.eps_of[i]; }), M);
+    t.eps_inv = Lu(t.eps).inverse();
+    t.a = s.li_rule
+              ? Lu(toeplitz(profile_coefficients(slice, cell.period_nm, M, [&](int i) { return 1.0 / w.eps_of[i]; }), M))
+                    .inverse()
+              : t.eps;
+  }
+  return w;
+}
+
+namespace {
+
+struct StackSolution {
+  Mat r, t;            // reflection (and, with settings.transmission, transmission) between the half-spaces
+  Modes top, bottom;   // the half-spaces' modes
+};
+
+StackSolution solve_stack(const WavelengthSetup& w, const Vec& kx, double ky, double kx_max) {
+  const SlicedCell& cell = *w.cell;
+  const SolverSettings& s = w.settings;
+  const int M = s.harmonics;
+  const double k0 = wavenumber_per_nm(w.lambda_nm);
   // The zero-thickness gap: any homogeneous medium; ε_gap > k_x² + k_y² keeps all its γ real and
   // away from 0 (no Wood anomaly in the reference basis).
   const Mat V0 = homogeneous_modes(1.0 + kx_max * kx_max + ky * ky, kx, ky).V;
-  const Modes top = homogeneous_modes(eps_of[0], kx, ky), bottom = homogeneous_modes(eps_of[1], kx, ky);
+  StackSolution out{{}, {}, homogeneous_modes(w.eps_of[0], kx, ky), homogeneous_modes(w.eps_of[1], kx, ky)};
   std::vector<SMatrix> by_type(cell.n_types);
   std::vector<bool> done(cell.n_types, false);
   auto slice_s = [&](const Slice& slice) -> const SMatrix& {
     if (!done[slice.type]) {
       // A slice shifted by half a period of one already solved: D S D (half_period_shift).
       const int twin = cell.half_shift_type.empty() ? -1 : cell.half_shift_type[slice.type];
-      by_type[slice.type] = twin >= 0 && done[twin]
-                                ? half_period_shift(by_type[twin], M)
-                                : slice_smatrix(slice_modes(slice, cell, eps_of, kx, ky, s), V0, k0 * slice.thickness_nm);
+      const double k0L = k0 * slice.thickness_nm;
+      by_type[slice.type] = twin >= 0 && done[twin] ? half_period_shift(by_type[twin], M)
+                            : slice.boxes.empty()   ? slice_smatrix(homogeneous_modes(w.eps_of[1], kx, ky), V0, k0L)
+                                                    : slice_smatrix(slice_modes(w.types[slice.type], kx, ky, s), V0, k0L);
       done[slice.type] = true;
     }
     return by_type[slice.type];
@@ -339,30 +415,48 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, 
     if (!unit.repeated) return slice_s(cell.slices[unit.begin]);
     const std::size_t first = unit.first_equal;
     if (!chunk_done[first]) {
-      if (unit.half_shift_of >= 0 && chunk_done[unit.half_shift_of]) {
-        chunk_s[first] = half_period_shift(chunk_s[unit.half_shift_of], M);
-      } else {
-        SMatrix chunk = slice_s(cell.slices[unit.begin]);
-        for (std::size_t k = unit.begin + 1; k < unit.end; ++k) chunk = star(chunk, slice_s(cell.slices[k]));
-        chunk_s[first] = std::move(chunk);
-      }
+      chunk_s[first] = unit.half_shift_of >= 0 && chunk_done[unit.half_shift_of]
+                           ? half_period_shift(chunk_s[unit.half_shift_of], M)
+                           : chunk_smatrix(cell, unit.begin, unit.end, slice_s);
       chunk_done[first] = true;
     }
     return chunk_s[first];
   };
-  const SMatrix top_s = half_space(top, V0, true), bottom_s = half_space(bottom, V0, false);
-  SMatrix total;
+  const SMatrix top_s = half_space(out.top, V0, true), bottom_s = half_space(out.bottom, V0, false);
   if (s.transmission) {
-    total = top_s;
+    SMatrix total = top_s;
     for (std::size_t u = 0; u < units.size(); ++u) total = star(total, unit_s(u));
     total = star(total, bottom_s);
+    out.r = std::move(total.s11);
+    out.t = std::move(total.s21);
   } else {
     // Only the reflection is needed: recurse R upward from the substrate (one LU and three products
     // per unit instead of a star product's two LUs and eight products).
     Mat R = bottom_s.s11;
     for (std::size_t u = units.size(); u-- > 0;) R = reflect_over(unit_s(u), R);
-    total.s11 = reflect_over(top_s, R);
+    out.r = reflect_over(top_s, R);
   }
+  return out;
+}
+
+}  // namespace
+
+EntryResult solve_entry(const WavelengthSetup& w, double theta, double phi) {
+  const SlicedCell& cell = *w.cell;
+  const SolverSettings& s = w.settings;
+  const int M = s.harmonics, n = 2 * M + 1;
+  const double lambda_nm = w.lambda_nm;
+  // Engine frame (slicing.hpp): ω_i,e = (cosθ sinφ, −sinθ, −cosθ cosφ), incident k = −ω_i,e.
+  const double st = std::sin(theta), ct = std::cos(theta), sp = std::sin(phi), cp = std::cos(phi);
+  const double kx0 = -ct * sp, ky = st, kz0 = ct * cp;
+  Vec kx(n);
+  double kx_max = 0.0;
+  for (int m = -M; m <= M; ++m) {
+    kx(m + M) = kx0 + m * lambda_nm / cell.period_nm;
+    kx_max = std::max(kx_max, std::abs(kx(m + M).real()));
+  }
+  const StackSolution stack = solve_stack(w, kx, ky, kx_max);
+  const Modes &top = stack.top, &bottom = stack.bottom;
 
   // ŝ = ω_i,e × n̂_e, n̂_e = (0, 0, −1); R ŷ = −ŷ at exactly normal incidence (crystal_mapping.cpp).
   double sx = st, sy = ct * sp;
@@ -381,8 +475,8 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, 
     c(M) = e_inc[q][0];
     c(n + M) = e_inc[q][1];
     const double f_inc = z_flux(e_inc[q], k_inc);
-    const Vec cr = total.s11 * c;
-    const Vec ct_ = s.transmission ? Vec(total.s21 * c) : Vec::Zero(2 * n);
+    const Vec cr = stack.r * c;
+    const Vec ct_ = s.transmission ? Vec(stack.t * c) : Vec::Zero(2 * n);
     for (int m = 0; m < n; ++m) {
       const Complex gr = top.gamma(m), gt = bottom.gamma(m);
       const Vec3 er = wave_field(cr(m), cr(n + m), kx(m), ky, -gr);
@@ -404,13 +498,23 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, 
   return r;
 }
 
-EntryResult solve_entry_extrapolated(const SlicedCell& coarse, const SlicedCell& fine, double lambda_nm, double theta,
-                                     double phi, const SolverSettings& s) {
-  const EntryResult a = solve_entry(coarse, lambda_nm, theta, phi, s);
-  EntryResult r = solve_entry(fine, lambda_nm, theta, phi, s);
+EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta, double phi, const SolverSettings& s) {
+  return solve_entry(prepare_wavelength(cell, lambda_nm, s), theta, phi);
+}
+
+EntryResult solve_entry_extrapolated(const WavelengthSetup& coarse, const WavelengthSetup& fine, double theta,
+                                     double phi) {
+  const EntryResult a = solve_entry(coarse, theta, phi);
+  EntryResult r = solve_entry(fine, theta, phi);
   auto x = [](Complex f, Complex c) { return (4.0 * f - c) / 3.0; };
   r.jones = {x(r.jones.ss, a.jones.ss), x(r.jones.sp, a.jones.sp), x(r.jones.ps, a.jones.ps), x(r.jones.pp, a.jones.pp)};
   return r;
+}
+
+EntryResult solve_entry_extrapolated(const SlicedCell& coarse, const SlicedCell& fine, double lambda_nm, double theta,
+                                     double phi, const SolverSettings& s) {
+  return solve_entry_extrapolated(prepare_wavelength(coarse, lambda_nm, s), prepare_wavelength(fine, lambda_nm, s),
+                                  theta, phi);
 }
 
 }  // namespace plumage::rcwa
