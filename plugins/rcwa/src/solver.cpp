@@ -52,6 +52,9 @@ Complex forward_root(Complex g2) {
   return g;
 }
 
+// The host is the gap medium of the S-matrices when all its |γ| are at least this (solve_stack).
+constexpr double kHostGapMinGamma = 0.05;
+
 // Relative gap |u − t| / max|eigenvalue| below which slice_modes solves the coupled problem.
 constexpr double kDegenerateTolerance = 1e-7;
 
@@ -387,28 +390,46 @@ struct StackSolution {
 StackSolution solve_stack(const WavelengthSetup& w, const Vec& kx, double ky, double kx_max) {
   const SlicedCell& cell = *w.cell;
   const SolverSettings& s = w.settings;
-  const int M = s.harmonics;
+  const int M = s.harmonics, n = 2 * M + 1;
   const double k0 = wavenumber_per_nm(w.lambda_nm);
-  // The zero-thickness gap: any homogeneous medium; ε_gap > k_x² + k_y² keeps all its γ real and
-  // away from 0 (no Wood anomaly in the reference basis).
-  const Mat V0 = homogeneous_modes(1.0 + kx_max * kx_max + ky * ky, kx, ky).V;
   StackSolution out{{}, {}, homogeneous_modes(w.eps_of[0], kx, ky), homogeneous_modes(w.eps_of[1], kx, ky)};
-  std::vector<SMatrix> by_type(cell.n_types);
+  // The zero-thickness gap: any homogeneous medium. The host itself when none of its orders is near
+  // grazing: host-only slices are then pure phase delays (s11 = s22 = 0, s12 = s21 = X) and the
+  // substrate reflects nothing, so such a unit costs R' = X R X instead of an S-matrix and an LU.
+  // Next to a Rayleigh anomaly of the host (some |γ| < kHostGapMinGamma, V0 ∝ Γ⁻¹ large) the gap is
+  // ε_gap = 1 + max k_x² + k_y² instead, whose γ are all real and away from 0.
+  const bool host_gap = out.bottom.gamma.cwiseAbs().minCoeff() >= kHostGapMinGamma;
+  const Mat V0 = host_gap ? out.bottom.V : homogeneous_modes(1.0 + kx_max * kx_max + ky * ky, kx, ky).V;
+  auto host_phase = [&](double thickness_nm) {
+    return Vec((Complex(0.0, 1.0) * k0 * thickness_nm * out.bottom.gamma).array().exp());
+  };
+  // The per-type and per-chunk S-matrices (~30 KB each) live on between the entries of a thread: freed
+  // at every entry, they made glibc trim the heap top and fault the pages in again (~80 page
+  // faults per entry, ~8 % of the CPU as system time; NOTES.md §5).
+  thread_local std::vector<SMatrix> by_type, chunk_s;
+  by_type.resize(static_cast<std::size_t>(cell.n_types));
   std::vector<bool> done(cell.n_types, false);
   auto slice_s = [&](const Slice& slice) -> const SMatrix& {
     if (!done[slice.type]) {
       // A slice shifted by half a period of one already solved: D S D (half_period_shift).
       const int twin = cell.half_shift_type.empty() ? -1 : cell.half_shift_type[slice.type];
       const double k0L = k0 * slice.thickness_nm;
-      by_type[slice.type] = twin >= 0 && done[twin] ? half_period_shift(by_type[twin], M)
-                            : slice.boxes.empty()   ? slice_smatrix(homogeneous_modes(w.eps_of[1], kx, ky), V0, k0L)
-                                                    : slice_smatrix(slice_modes(w.types[slice.type], kx, ky, s), V0, k0L);
+      if (twin >= 0 && done[twin]) {
+        by_type[slice.type] = half_period_shift(by_type[twin], M);
+      } else if (slice.boxes.empty() && host_gap) {
+        const Mat X = host_phase(slice.thickness_nm).asDiagonal();
+        by_type[slice.type] = {Mat::Zero(2 * n, 2 * n), X, X, Mat::Zero(2 * n, 2 * n)};
+      } else {
+        by_type[slice.type] = slice_smatrix(slice.boxes.empty() ? homogeneous_modes(w.eps_of[1], kx, ky)
+                                                                : slice_modes(w.types[slice.type], kx, ky, s),
+                                            V0, k0L);
+      }
       done[slice.type] = true;
     }
     return by_type[slice.type];
   };
   const std::vector<StackUnit> units = stack_units(cell);
-  std::vector<SMatrix> chunk_s(units.size());  // the S-matrix of each repeated chunk, built once
+  chunk_s.resize(units.size());  // the S-matrix of each repeated chunk, built once
   std::vector<bool> chunk_done(units.size(), false);
   auto unit_s = [&](std::size_t u) -> const SMatrix& {
     const StackUnit& unit = units[u];
@@ -422,7 +443,9 @@ StackSolution solve_stack(const WavelengthSetup& w, const Vec& kx, double ky, do
     }
     return chunk_s[first];
   };
-  const SMatrix top_s = half_space(out.top, V0, true), bottom_s = half_space(out.bottom, V0, false);
+  const Mat I = Mat::Identity(2 * n, 2 * n), O = Mat::Zero(2 * n, 2 * n);
+  const SMatrix top_s = half_space(out.top, V0, true);
+  const SMatrix bottom_s = host_gap ? SMatrix{O, I, I, O} : half_space(out.bottom, V0, false);
   if (s.transmission) {
     SMatrix total = top_s;
     for (std::size_t u = 0; u < units.size(); ++u) total = star(total, unit_s(u));
@@ -433,7 +456,15 @@ StackSolution solve_stack(const WavelengthSetup& w, const Vec& kx, double ky, do
     // Only the reflection is needed: recurse R upward from the substrate (one LU and three products
     // per unit instead of a star product's two LUs and eight products).
     Mat R = bottom_s.s11;
-    for (std::size_t u = units.size(); u-- > 0;) R = reflect_over(unit_s(u), R);
+    for (std::size_t u = units.size(); u-- > 0;) {
+      const StackUnit& unit = units[u];
+      if (host_gap && !unit.repeated && cell.slices[unit.begin].boxes.empty()) {
+        const Vec x = host_phase(cell.slices[unit.begin].thickness_nm);
+        R = x.asDiagonal() * R * x.asDiagonal();
+      } else {
+        R = reflect_over(unit_s(u), R);
+      }
+    }
     out.r = reflect_over(top_s, R);
   }
   return out;
