@@ -102,6 +102,32 @@ Modes coupled_modes(const Mat& P, const Mat& Q) {
   return m;
 }
 
+// What slice_smatrix needs of a slice's modes against the gap (W0 = I, V0): W⁻¹, V⁻¹V0 and γ.
+struct SlabModes {
+  Mat W_inv, ViV0;
+  Vec gamma;
+};
+
+SlabModes slab_modes(const Modes& m, const Mat& V0) { return {m.W_inv, Lu(m.V).solve(V0), m.gamma}; }
+
+// P V0 for a gap V0 whose four n × n blocks are diagonal (a homogeneous medium): column scalings of
+// P's blocks (P of solver.hpp from [[ε]]⁻¹ and the orders), O(n²) instead of a product.
+Mat p_times_gap(const Mat& Ei, const Vec& kx, double ky, const Mat& V0) {
+  const int n = static_cast<int>(kx.size());
+  const auto Kx = kx.asDiagonal();
+  Mat P11 = ky * (Kx * Ei), P12 = -(Kx * Ei * Kx), P21 = (ky * ky) * Ei, P22 = -ky * (Ei * Kx);
+  P12.diagonal().array() += 1.0;
+  P21.diagonal().array() -= 1.0;
+  const Vec v11 = V0.topLeftCorner(n, n).diagonal(), v12 = V0.topRightCorner(n, n).diagonal();
+  const Vec v21 = V0.bottomLeftCorner(n, n).diagonal(), v22 = V0.bottomRightCorner(n, n).diagonal();
+  Mat PV0(2 * n, 2 * n);
+  PV0.topLeftCorner(n, n) = P11 * v11.asDiagonal() + P12 * v21.asDiagonal();
+  PV0.topRightCorner(n, n) = P11 * v12.asDiagonal() + P12 * v22.asDiagonal();
+  PV0.bottomLeftCorner(n, n) = P21 * v11.asDiagonal() + P22 * v21.asDiagonal();
+  PV0.bottomRightCorner(n, n) = P21 * v12.asDiagonal() + P22 * v22.asDiagonal();
+  return PV0;
+}
+
 // A y-invariant slice: PQ = [[T − k_y², 0], [C, U − k_y²]] with T = (I − K_x ε⁻¹ K_x) A (TM-like,
 // E_x), U = [[ε]] − K_x² (TE-like, E_y), C = k_y (K_x − ε⁻¹ K_x A) (expand P Q of solver.hpp; the
 // k_y terms of the diagonal blocks cancel). So the conical modes come from two n × n eigenproblems
@@ -109,7 +135,8 @@ Modes coupled_modes(const Mat& P, const Mat& Q) {
 // T's are (w_t; y) with (U − t) y = −C w_t, solved in U's eigenbasis (4x fewer flops than the
 // coupled solve; the same γ and fields up to the modes' normalisation, NOTES.md §5).
 // [[ε]], [[ε]]⁻¹ and A depend on λ only: they come from the WavelengthSetup.
-Modes slice_modes(const WavelengthSetup::TypeMatrices& tm, const Vec& kx, double ky, const SolverSettings& s) {
+SlabModes slice_modes(const WavelengthSetup::TypeMatrices& tm, const Vec& kx, double ky, const Mat& V0,
+                      const SolverSettings& s) {
   const int n = 2 * s.harmonics + 1;
   const Mat &E = tm.eps, &Ei = tm.eps_inv, &A = tm.a;
   const auto Kx = kx.asDiagonal();
@@ -120,7 +147,7 @@ Modes slice_modes(const WavelengthSetup::TypeMatrices& tm, const Vec& kx, double
     P.topRightCorner(n, n) = I - Kx * Ei * Kx;
     P.bottomLeftCorner(n, n) = ky * ky * Ei - I;
     P.bottomRightCorner(n, n) = -ky * (Ei * Kx);
-    return coupled_modes(P, q_matrix(E, A, kx, ky));
+    return slab_modes(coupled_modes(P, q_matrix(E, A, kx, ky)), V0);
   };
   if (s.coupled_eigenproblem) return coupled();
   const Mat KxA = Kx * A;
@@ -132,14 +159,10 @@ Modes slice_modes(const WavelengthSetup::TypeMatrices& tm, const Vec& kx, double
   const Vec& u = eig_u.eigenvalues();
   const Mat &Wt = eig_t.eigenvectors(), &Wu = eig_u.eigenvectors();
   const Lu Wu_lu(Wu);
-  Modes m;
-  m.W = Mat::Zero(2 * n, 2 * n);
-  m.W.topLeftCorner(n, n) = Wt;
-  m.W.bottomRightCorner(n, n) = Wu;
+  SlabModes m;
   m.W_inv = Mat::Zero(2 * n, 2 * n);
   m.W_inv.topLeftCorner(n, n) = Lu(Wt).inverse();
   m.W_inv.bottomRightCorner(n, n) = Wu_lu.inverse();
-  Mat G = Mat::Zero(n, n), Wc = Mat::Zero(n, n);  // W's lower-left block Wc = −Wu G (0 at k_y = 0)
   if (ky != 0.0) {
     // Near-coincident t and u (a nearly homogeneous slice) make (U − t)⁻¹ ill-conditioned: solve
     // the coupled problem there instead.
@@ -148,13 +171,11 @@ Modes slice_modes(const WavelengthSetup::TypeMatrices& tm, const Vec& kx, double
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k)
         if (std::abs(u(j) - t(k)) < kDegenerateTolerance * scale) return coupled();
-    G = Wu_lu.solve(ky * (Kx * Wt - Ei * (KxA * Wt)));
+    // W = [[Wt, 0], [Wc, Wu]] with Wc = −Wu G is block lower triangular: W⁻¹'s lower-left block is
+    // −Wu⁻¹ Wc Wt⁻¹ = G Wt⁻¹ (no 2n × 2n LU).
+    Mat G = Wu_lu.solve(ky * (Kx * Wt - Ei * (KxA * Wt)));
     for (int j = 0; j < n; ++j)
       for (int k = 0; k < n; ++k) G(j, k) /= u(j) - t(k);
-    Wc = -Wu * G;
-    m.W.bottomLeftCorner(n, n) = Wc;
-    // W = [[Wt, 0], [Wc, Wu]] is block lower triangular: W⁻¹'s lower-left block is
-    // −Wu⁻¹ Wc Wt⁻¹ = G Wt⁻¹ (no 2n × 2n LU).
     m.W_inv.bottomLeftCorner(n, n) = G * m.W_inv.topLeftCorner(n, n);
   }
   m.gamma.resize(2 * n);
@@ -162,31 +183,24 @@ Modes slice_modes(const WavelengthSetup::TypeMatrices& tm, const Vec& kx, double
     m.gamma(j) = forward_root(t(j) - ky * ky);
     m.gamma(n + j) = forward_root(u(j) - ky * ky);
   }
-  // V = Q W Γ⁻¹ blockwise (Q of solver.hpp): with (K_x² − [[ε]]) = −U, U Wu = Wu diag(u) and
-  // Wc = −Wu G, Q W = [[−k_y K_x Wt + Wu diag(u) G, −Wu diag(u)], [(A − k_y²) Wt + k_y K_x Wc, k_y K_x Wu]]:
-  // two n × n products instead of a 2n × 2n one.
-  const Vec gi = m.gamma.cwiseInverse();
-  const auto gt_inv = gi.head(n).asDiagonal(), gu_inv = gi.tail(n).asDiagonal();
-  const auto Du = u.asDiagonal();
-  m.V.resize(2 * n, 2 * n);
-  Mat top_left = -ky * (Kx * Wt);
-  if (ky != 0.0) top_left.noalias() += Wu * (Du * G);
-  Mat bottom_left = A * Wt;
-  bottom_left += (ky * Kx) * Wc - (ky * ky) * Wt;
-  m.V.topLeftCorner(n, n) = top_left * gt_inv;
-  m.V.bottomLeftCorner(n, n) = bottom_left * gt_inv;
-  m.V.topRightCorner(n, n) = -(Wu * Du) * gu_inv;
-  m.V.bottomRightCorner(n, n) = (ky * Kx) * Wu * gu_inv;
+  // V = Q W Γ⁻¹, and P Q W = W Γ² gives V = P⁻¹ W Γ, so V⁻¹V0 = Γ⁻¹ W⁻¹ (P V0): no V and no 2n × 2n
+  // LU; W⁻¹ block lower triangular (three n × 2n products).
+  const Mat PV0 = p_times_gap(Ei, kx, ky, V0);
+  m.ViV0.resize(2 * n, 2 * n);
+  m.ViV0.topRows(n) = m.W_inv.topLeftCorner(n, n) * PV0.topRows(n);
+  m.ViV0.bottomRows(n) = m.W_inv.bottomRightCorner(n, n) * PV0.bottomRows(n);
+  if (ky != 0.0) m.ViV0.bottomRows(n).noalias() += m.W_inv.bottomLeftCorner(n, n) * PV0.topRows(n);
+  m.ViV0 = m.gamma.cwiseInverse().asDiagonal() * m.ViV0;
   return m;
 }
 
-// S-matrix of a slice of thickness k0·L between two zero-thickness air gaps (W0 = I, V0). Rumpf's
+// S-matrix of a slice of thickness k0·L between two zero-thickness gaps (W0 = I, V0). Rumpf's
 // symmetric form has s11 = s22 = D⁻¹(X B A⁻¹ X A − B), s12 = s21 = D⁻¹ X (A − B A⁻¹ B) with
 // A = W⁻¹ + V⁻¹V0, B = W⁻¹ − V⁻¹V0, X = diag(e^{iγk0L}), D = A − X B A⁻¹ X B. D factors as
 // (A + XB) A⁻¹ (A − XB) = (A − XB) A⁻¹ (A + XB), so the even and odd parts of the slab are
 // s11 + s12 = (A − XB)⁻¹ (XA − B) and s11 − s12 = −(A + XB)⁻¹ (XA + B): two LUs, no A⁻¹.
-SMatrix slice_smatrix(const Modes& m, const Mat& V0, double k0L) {
-  const Mat ViV0 = Lu(m.V).solve(V0);
+SMatrix slice_smatrix(const SlabModes& m, double k0L) {
+  const Mat& ViV0 = m.ViV0;
   const Vec x = (Complex(0.0, 1.0) * k0L * m.gamma).array().exp();
   const Vec one_minus_x = Vec::Ones(x.size()) - x, one_plus_x = Vec::Ones(x.size()) + x;
   // A − XB = (I − X) W⁻¹ + (I + X) V⁻¹V0 =: a + b, XA − B = b − a; A + XB = c + d, XA + B = c − d.
@@ -420,9 +434,9 @@ StackSolution solve_stack(const WavelengthSetup& w, const Vec& kx, double ky, do
         const Mat X = host_phase(slice.thickness_nm).asDiagonal();
         by_type[slice.type] = {Mat::Zero(2 * n, 2 * n), X, X, Mat::Zero(2 * n, 2 * n)};
       } else {
-        by_type[slice.type] = slice_smatrix(slice.boxes.empty() ? homogeneous_modes(w.eps_of[1], kx, ky)
-                                                                : slice_modes(w.types[slice.type], kx, ky, s),
-                                            V0, k0L);
+        by_type[slice.type] = slice_smatrix(slice.boxes.empty() ? slab_modes(homogeneous_modes(w.eps_of[1], kx, ky), V0)
+                                                                : slice_modes(w.types[slice.type], kx, ky, V0, s),
+                                            k0L);
       }
       done[slice.type] = true;
     }
