@@ -59,7 +59,7 @@ constexpr double kHostGapMinGamma = 0.05;
 constexpr double kDegenerateTolerance = 1e-7;
 
 struct Modes {
-  Mat W, W_inv, V;  // W_inv = W⁻¹ (block lower triangular for the decoupled modes: cheap)
+  Mat W, W_inv, V;  // W_inv = W⁻¹ (homogeneous and coupled modes; slice_modes builds SlabModes directly)
   Vec gamma;
 };
 

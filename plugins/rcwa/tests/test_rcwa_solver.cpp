@@ -88,6 +88,48 @@ TEST_CASE("rcwa: a layered keratin/melanin film equals the closed-form multilaye
   }
 }
 
+TEST_CASE("rcwa: repeated palindromic runs (odd and even) between host slices equal the closed-form multilayer",
+          "[rcwa]") {
+  // Runs of full-width layers between host-only slices, each occurring twice, so solve_stack builds
+  // them once as H ⊗ s_mid ⊗ swap(H) (odd) and H ⊗ swap(H) (even), then recurses R through them.
+  const double period = 190.0;
+  SlicedCell c;
+  c.period_nm = period;
+  c.materials = {Material::air(), Material::keratin(), Material::melanin(), Material::constant({1.9, 0.0})};
+  auto layer = [&](int material, double d) {
+    Slice s;
+    s.thickness_nm = d;
+    s.boxes.push_back({0.0, period, material, 1});
+    return s;
+  };
+  auto host = [](double d) {
+    Slice s;
+    s.thickness_nm = d;
+    return s;
+  };
+  const std::vector<Slice> odd = {layer(2, 30), layer(3, 40), layer(2, 20), layer(3, 40), layer(2, 30)};
+  const std::vector<Slice> even = {layer(2, 25), layer(3, 35), layer(3, 35), layer(2, 25)};
+  for (const auto& run : {odd, even, odd, even}) {
+    c.slices.push_back(host(50));
+    c.slices.insert(c.slices.end(), run.begin(), run.end());
+  }
+  c.slices.push_back(host(40));
+  assign_slice_types(c);
+  for (double lambda : {430.0, 610.0}) {
+    for (auto [theta, phi] : {std::pair{0.0, 0.0}, {0.5, 0.7}, {1.1, 0.3}}) {
+      const EntryResult r = solve_entry(c, lambda, theta, phi, {.harmonics = 4, .li_rule = true});
+      std::vector<FilmLayer> ref;
+      for (const Slice& s : c.slices)
+        ref.push_back({std::pow(c.materials[s.boxes.empty() ? 1 : s.boxes[0].material].index(lambda), 2), s.thickness_nm});
+      const double ca = std::cos(theta) * std::cos(phi);
+      const Complex nk = Material::keratin().index(lambda);
+      const auto [gs, gp] = airy(ref, nk * nk, lambda, 1.0 - ca * ca);
+      CAPTURE(lambda, theta, phi, r.jones.ss, gs, r.jones.pp, gp);
+      CHECK(max_abs(r.jones, {gs, 0.0, 0.0, gp}) < 1e-10);
+    }
+  }
+}
+
 TEST_CASE("rcwa: R + T = 1 for a lossless crystal, A >= 0 with melanin", "[rcwa]") {
   CrystalCell c;
   c.name = "test";
