@@ -126,14 +126,23 @@ ReflectionTable RcwaTableBuilder::build(const CrystalCell& cell, const TableGrid
   std::size_t other_entries = 0;
   double max_other = 0.0, max_other_lambda = 0.0;
   auto work = [&] {
+    // The λ-only matrices of the worker's current wavelength (rows are handed out λ-major, so a
+    // worker recomputes them only when its next row is at a new λ; same values on any thread).
+    std::size_t setup_il = nl;
+    WavelengthSetup fine_setup, coarse_setup;
     for (std::size_t row = next++; row < rows; row = next++) {
       const std::size_t il = row / nt, it = row % nt;
+      if (il != setup_il) {
+        fine_setup = prepare_wavelength(sliced, grid.lambda_nm[il], s.solver);
+        if (s.richardson) coarse_setup = prepare_wavelength(half, grid.lambda_nm[il], s.solver);
+        setup_il = il;
+      }
       std::size_t row_other = 0;
       double row_max = 0.0;
       for (std::size_t ip = 0; ip < np; ++ip) {
-        const double lambda = grid.lambda_nm[il], theta = std::acos(grid.cos_theta[it]), phi = std::acos(grid.cos_phi[ip]);
-        const EntryResult r = s.richardson ? solve_entry_extrapolated(half, sliced, lambda, theta, phi, s.solver)
-                                           : solve_entry(sliced, lambda, theta, phi, s.solver);
+        const double theta = std::acos(grid.cos_theta[it]), phi = std::acos(grid.cos_phi[ip]);
+        const EntryResult r = s.richardson ? solve_entry_extrapolated(coarse_setup, fine_setup, theta, phi)
+                                           : solve_entry(fine_setup, theta, phi);
         table.at(il, it, ip) = r.jones;
         if (r.has_other_orders) ++row_other;
         row_max = std::max({row_max, r.other_orders[0], r.other_orders[1]});

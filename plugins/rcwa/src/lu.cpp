@@ -3,6 +3,10 @@
 #include <complex>
 #include <utility>
 
+namespace {
+using Complex = std::complex<double>;
+}
+
 namespace plumage::rcwa {
 
 Lu::Lu(Mat a) : lu_(std::move(a)), swaps_(static_cast<std::size_t>(lu_.rows())) {
@@ -18,8 +22,17 @@ Lu::Lu(Mat a) : lu_(std::move(a)), swaps_(static_cast<std::size_t>(lu_.rows())) 
     if (p != k) lu_.row(k).swap(lu_.row(p));
     const Eigen::Index r = n - k - 1;
     if (r == 0 || best == 0.0) continue;  // a zero pivot: singular, as Eigen's PartialPivLU leaves it
-    lu_.col(k).tail(r) /= lu_(k, k);
-    lu_.bottomRightCorner(r, r).noalias() -= lu_.col(k).tail(r) * lu_.row(k).tail(r);
+    // The rank-1 update of the trailing block column by column on the contiguous column-major
+    // storage (Eigen's outer-product expression on the nested block was ~3x slower at n ≈ 22).
+    Complex* a = lu_.data();
+    Complex* lk = a + k * n;
+    const Complex inv_pivot = 1.0 / lk[k];
+    for (Eigen::Index i = k + 1; i < n; ++i) lk[i] *= inv_pivot;
+    for (Eigen::Index j = k + 1; j < n; ++j) {
+      Complex* cj = a + j * n;
+      const Complex ukj = cj[k];
+      for (Eigen::Index i = k + 1; i < n; ++i) cj[i] -= lk[i] * ukj;
+    }
   }
 }
 

@@ -12,6 +12,9 @@
 // star products (Li 1997; Rumpf's symmetric form) — never transfer-matrix products.
 #pragma once
 
+#include <Eigen/Dense>
+#include <vector>
+
 #include "plumage/local_reflection.hpp"
 #include "slicing.hpp"
 
@@ -35,7 +38,25 @@ struct EntryResult {
   bool has_other_orders = false;   // a propagating reflected order m ≠ 0 exists
 };
 
-// One table entry: λ (nm), θ and φ_local (rad) of local_reflection.hpp; both polarizations.
+// What depends on λ only, not on the incidence: ε of the materials and, per slice type with boxes,
+// the Toeplitz matrix [[ε]], its inverse and A (Li's [[1/ε]]⁻¹, or [[ε]]). A table computes it once
+// per wavelength (its 1000 angles share it); the same values as inside solve_entry.
+struct WavelengthSetup {
+  struct TypeMatrices {
+    Eigen::MatrixXcd eps, eps_inv, a;
+  };
+  const SlicedCell* cell = nullptr;  // not owned: must outlive the setup
+  double lambda_nm = 0;
+  SolverSettings settings;
+  std::vector<Complex> eps_of;      // per material of the cell
+  std::vector<TypeMatrices> types;  // per slice type (empty matrices for host-only types)
+};
+WavelengthSetup prepare_wavelength(const SlicedCell& cell, double lambda_nm, const SolverSettings& settings);
+
+// One table entry: θ and φ_local (rad) of local_reflection.hpp at the setup's λ; both polarizations.
+EntryResult solve_entry(const WavelengthSetup& setup, double theta_rad, double phi_rad);
+
+// The same from scratch: λ (nm), θ and φ_local (rad).
 EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta_rad, double phi_rad,
                         const SolverSettings& settings);
 
@@ -43,5 +64,7 @@ EntryResult solve_entry(const SlicedCell& cell, double lambda_nm, double theta_r
 // same cell at S and 2S slices J ≈ (4 J(2S) − J(S))/3; powers are taken from the 2S solution.
 EntryResult solve_entry_extrapolated(const SlicedCell& coarse, const SlicedCell& fine, double lambda_nm,
                                      double theta_rad, double phi_rad, const SolverSettings& settings);
+EntryResult solve_entry_extrapolated(const WavelengthSetup& coarse, const WavelengthSetup& fine, double theta_rad,
+                                     double phi_rad);
 
 }  // namespace plumage::rcwa

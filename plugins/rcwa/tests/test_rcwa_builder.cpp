@@ -105,3 +105,20 @@ TEST_CASE("rcwa builder: a crystal's rcwa: section sets its production settings"
   CHECK_THROWS_AS(builder->check_cell(with_section("range.yaml", "{slices_per_row: 999}")), ConfigError);
   fs::remove_all(dir);
 }
+
+TEST_CASE("rcwa builder: the same bits on 1 and 2 threads (per-thread wavelength setups)", "[rcwa]") {
+  const CrystalCell cell = mallard();
+  const TableGrid grid = TableGrid::uniform(450, 650, 3, 3, 4);
+  auto table = [&](int threads) {
+    const ConfigDocument doc = ConfigDocument::parse(
+        "fidelity: preview\nrichardson: true\nthreads: " + std::to_string(threads) + "\n", "builder.yaml");
+    return registry().create_named<TableBuilder>("rcwa", doc.root(), registry().context())->build(cell, grid, {});
+  };
+  const ReflectionTable one = table(1), two = table(2);
+  REQUIRE(one.entries().size() == two.entries().size());
+  for (std::size_t i = 0; i < one.entries().size(); ++i) {
+    const JonesReflection &a = one.entries()[i], &b = two.entries()[i];
+    CAPTURE(i);
+    CHECK((a.ss == b.ss && a.sp == b.sp && a.ps == b.ps && a.pp == b.pp));
+  }
+}

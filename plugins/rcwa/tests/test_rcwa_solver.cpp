@@ -88,6 +88,48 @@ TEST_CASE("rcwa: a layered keratin/melanin film equals the closed-form multilaye
   }
 }
 
+TEST_CASE("rcwa: repeated palindromic runs (odd and even) between host slices equal the closed-form multilayer",
+          "[rcwa]") {
+  // Runs of full-width layers between host-only slices, each occurring twice, so solve_stack builds
+  // them once as H ⊗ s_mid ⊗ swap(H) (odd) and H ⊗ swap(H) (even), then recurses R through them.
+  const double period = 190.0;
+  SlicedCell c;
+  c.period_nm = period;
+  c.materials = {Material::air(), Material::keratin(), Material::melanin(), Material::constant({1.9, 0.0})};
+  auto layer = [&](int material, double d) {
+    Slice s;
+    s.thickness_nm = d;
+    s.boxes.push_back({0.0, period, material, 1});
+    return s;
+  };
+  auto host = [](double d) {
+    Slice s;
+    s.thickness_nm = d;
+    return s;
+  };
+  const std::vector<Slice> odd = {layer(2, 30), layer(3, 40), layer(2, 20), layer(3, 40), layer(2, 30)};
+  const std::vector<Slice> even = {layer(2, 25), layer(3, 35), layer(3, 35), layer(2, 25)};
+  for (const auto& run : {odd, even, odd, even}) {
+    c.slices.push_back(host(50));
+    c.slices.insert(c.slices.end(), run.begin(), run.end());
+  }
+  c.slices.push_back(host(40));
+  assign_slice_types(c);
+  for (double lambda : {430.0, 610.0}) {
+    for (auto [theta, phi] : {std::pair{0.0, 0.0}, {0.5, 0.7}, {1.1, 0.3}}) {
+      const EntryResult r = solve_entry(c, lambda, theta, phi, {.harmonics = 4, .li_rule = true});
+      std::vector<FilmLayer> ref;
+      for (const Slice& s : c.slices)
+        ref.push_back({std::pow(c.materials[s.boxes.empty() ? 1 : s.boxes[0].material].index(lambda), 2), s.thickness_nm});
+      const double ca = std::cos(theta) * std::cos(phi);
+      const Complex nk = Material::keratin().index(lambda);
+      const auto [gs, gp] = airy(ref, nk * nk, lambda, 1.0 - ca * ca);
+      CAPTURE(lambda, theta, phi, r.jones.ss, gs, r.jones.pp, gp);
+      CHECK(max_abs(r.jones, {gs, 0.0, 0.0, gp}) < 1e-10);
+    }
+  }
+}
+
 TEST_CASE("rcwa: R + T = 1 for a lossless crystal, A >= 0 with melanin", "[rcwa]") {
   CrystalCell c;
   c.name = "test";
@@ -115,6 +157,40 @@ TEST_CASE("rcwa: R + T = 1 for a lossless crystal, A >= 0 with melanin", "[rcwa]
       CAPTURE(lambda, q, absorbed);
       CHECK(absorbed > 0.0);
       CHECK(absorbed < 1.0);
+    }
+  }
+}
+
+TEST_CASE("rcwa: next to a Rayleigh anomaly of the host (the S-matrices' gap medium switches)", "[rcwa]") {
+  // solve_stack takes the host as the gap medium unless a host order has |γ| < 0.05 (then the
+  // artificial gap). At normal incidence the host's orders ±1 have γ² = ε_host − (λ/Λ)²: choose λ
+  // for γ on both sides of the switch and check against the closed-form film and R + T = 1 (with
+  // the host as the gap down to γ = 1e-6, R + T − 1 is 3e-10 there: the switch is needed).
+  const double period = 300.0;
+  const SlicedCell film_cell = film({{Material::melanin(), 80.0}, {Material::keratin(), 95.0}, {Material::melanin(), 60.0}}, period);
+  CrystalCell c;
+  c.name = "test";
+  c.a_x_nm = period, c.a_z_nm = 164.5, c.rod_diameter_nm = 152, c.rows = 2, c.cortex_nm = 60;
+  c.rod = Material::constant({1.9, 0.0});
+  c.host = Material::constant({1.56, 0.0});
+  const SlicedCell lossless = slice_crystal(c, 6);
+  for (double gamma : {1e-6, 1e-4, 0.02, 0.049, 0.051, 0.1}) {
+    double lambda = 470.0;  // λ = Λ √(Re ε_host(λ) − γ²), by fixed-point iteration (ε_host varies slowly)
+    for (int k = 0; k < 50; ++k) lambda = period * std::sqrt(std::norm(Material::keratin().index(lambda)) - gamma * gamma);
+    const EntryResult r = solve_entry(film_cell, lambda, 0.0, 0.0, {.harmonics = 5, .li_rule = true});
+    std::vector<FilmLayer> ref = {{std::pow(Material::melanin().index(lambda), 2), 80.0},
+                                  {std::pow(Material::keratin().index(lambda), 2), 95.0},
+                                  {std::pow(Material::melanin().index(lambda), 2), 60.0}};
+    const Complex nk = Material::keratin().index(lambda);
+    const auto [gs, gp] = airy(ref, nk * nk, lambda, 0.0);
+    CAPTURE(gamma, lambda, r.jones.ss, gs, r.jones.pp, gp);
+    CHECK(max_abs(r.jones, {gs, 0.0, 0.0, gp}) < 1e-10);
+    const double lambda_c = period * std::sqrt(1.56 * 1.56 - gamma * gamma);
+    for (auto [theta, phi] : {std::pair{0.0, 0.0}, {0.0, 0.02}}) {
+      const EntryResult t = solve_entry(lossless, lambda_c, theta, phi, {.harmonics = 6, .li_rule = true, .transmission = true});
+      CAPTURE(lambda_c, theta, phi, t.reflected[0], t.transmitted[0], t.reflected[1], t.transmitted[1]);
+      CHECK(std::abs(t.reflected[0] + t.transmitted[0] - 1.0) < 1e-10);
+      CHECK(std::abs(t.reflected[1] + t.transmitted[1] - 1.0) < 1e-10);
     }
   }
 }
