@@ -13,6 +13,12 @@ struct ChunkingOptions {
   // samples (kernel entries, GEMM rows) than the former 3.0 with 6, and ~2x closer to the exact sum.
   double oversampling = 1.6;
   int stencil_points = 10;  // even, 4 … kMaxStencilPoints
+  // The grids of the merge tree's internal nodes (radiation_tree.hpp) and the stencils that read
+  // the tree's grids (chunk → parent, node → parent, root → targets). A node's band margin
+  // 7x^{1/3} + 10 is a smaller share of its band than a chunk's, so the same accuracy needs more
+  // samples per band limit (issue 26, docs/benchmarks.md "simulate").
+  double merge_oversampling = 3.0;
+  int merge_stencil_points = 10;
   // The chunk GEMM (kernel × current columns) in single precision: the kernel built in float
   // (tent_kernel.hpp), the currents rounded to float once, products summed in float over a
   // chunk's ~100 nodes (issue 26:

@@ -84,11 +84,9 @@ struct Radiator::Plan {
   // Every chunk's projected samples, [chunk][grid point][azimuth][output] (re, im), outputs
   // first_output … first_output + outputs − 1 of the union of the target sets, in float (they
   // carry the float GEMM's rounding already); the internal nodes' samples, [grid point][azimuth]
-  // [output]; per target set the far field interpolated from the root, [direction][azimuth]
-  // [output] (re, im), in double.
+  // [output] (re, im).
   std::vector<float> rows;
   std::vector<std::vector<float>> node_samples;
-  std::vector<std::vector<double>> accumulated;
   std::vector<float> chunk_acc;
 };
 
@@ -116,8 +114,10 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
   p.chunked = options.chunked && on_cone;
   p.single_precision = options.single_precision_gemm;
   if (!p.chunked) return;
-  if (options.stencil_points < 4 || options.stencil_points > kMaxStencilPoints || options.stencil_points % 2 != 0)
-    throw Error("radiate: stencil_points must be even, in [4, " + std::to_string(kMaxStencilPoints) + "]");
+  for (const int points : {options.stencil_points, options.merge_stencil_points}) {
+    if (points < 4 || points > kMaxStencilPoints || points % 2 != 0)
+      throw Error("radiate: stencil_points must be even, in [4, " + std::to_string(kMaxStencilPoints) + "]");
+  }
   p.tree = far_field_tree(vertices, segment_length, gamma0, options, true);
   const std::size_t sets = p.target_phi.size(), chunks = p.tree.chunks.size();
   const SampleGrid& leaf = p.tree.grids.front();
@@ -126,7 +126,7 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
   p.root_phase.resize(sets);
   std::vector<double> angle;
   for (std::size_t s = 0; s < sets; ++s) {
-    p.stencils[s] = make_stencil(p.target_phi[s], p.tree.grids[p.tree.root().grid], options.stencil_points);
+    p.stencils[s] = make_stencil(p.target_phi[s], p.tree.grids[p.tree.root().grid], p.tree.root_points());
     const Stencil& st = p.stencils[s];
     const std::size_t n_dir = p.target_phi[s].size();
     angle.assign(n_dir + 4, 0.0);
@@ -170,7 +170,7 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
   double node_points = 0.0;  // grid points of the internal nodes (their samples, transfers)
   for (std::size_t n = tree.chunks.size(); n < tree.nodes.size(); ++n)
     node_points += static_cast<double>(tree.grids[tree.nodes[n].grid].samples);
-  const double stencil = static_cast<double>(options.stencil_points);
+  const double stencil = static_cast<double>(kMaxStencilPoints);
   bytes += (verts + 2.0 * chunks) * samples * 16.0;                      // outgoing phases per chunk
   bytes += node_points * 3.0 * (4.0 + 4.0 * stencil + 8.0);            // transfers (≤ 3 children)
   bytes += (directions + 4.0 * static_cast<double>(target_sizes.size())) * (16.0 + 8.0 * stencil);  // root stencils
@@ -186,7 +186,7 @@ namespace {
 // product [Re K; Im K]·[Re A | Im A] (azimuth a), into the chunk's rows (outputs q_lo …
 // q_lo + outputs − 1). The sums are formed in double whatever the product's precision.
 template <class Matrix>
-void project_samples(const Matrix& product, const std::vector<std::array<double, 3>>& e1s,
+__attribute__((noinline)) void project_samples(const Matrix& product, const std::vector<std::array<double, 3>>& e1s,
                      const std::vector<std::array<double, 3>>& e2s, int q_lo, int outputs, std::size_t a,
                      std::size_t n_phi, float* __restrict rows) {
   const Eigen::Index P = product.rows() / 2, columns = product.cols() / 2;
@@ -221,15 +221,18 @@ void project_samples(const Matrix& product, const std::vector<std::array<double,
 
 // The root's samples of outputs [offset/2, offset/2 + O2/2) (O2 floats per azimuth, `stride`
 // floats per grid point) interpolated to target set s and multiplied by e^{−iγ0 ρ̂_j·r_root}
-// (in double), one direction at a time. O2 > 0: known at compile time (four outputs: 8).
+// (in double), one direction at a time, into results[a · sets + s]. O2 > 0: known at compile
+// time (four outputs: 8).
 template <std::size_t O2>
 void interpolate_root_impl(Radiator::Plan& p, std::size_t s, const float* root, std::size_t stride, std::size_t offset,
-                           std::size_t n_phi, std::size_t runtime_o2) {
-  const std::size_t o2 = O2 > 0 ? O2 : runtime_o2, width = n_phi * o2;
+                           std::size_t runtime_o2, std::span<Eigen::MatrixXcd> results, std::size_t sets) {
+  const std::size_t n_phi = results.size() / sets;
+  const std::size_t o2 = O2 > 0 ? O2 : runtime_o2, width = n_phi * o2, per_azimuth = stride / n_phi;
   const Stencil& st = p.stencils[s];
   p.chunk_acc.resize(width);
   float* __restrict tmp = p.chunk_acc.data();
   const std::size_t n_dir = p.target_phi[s].size();
+  for (std::size_t a = 0; a < n_phi; ++a) results[a * sets + s].resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(o2 / 2));
   for (std::size_t j = 0; j < n_dir; ++j) {
     const auto& w = st.weight[j];
     for (std::size_t k = 0; k < width; ++k) tmp[k] = 0.0f;
@@ -237,41 +240,24 @@ void interpolate_root_impl(Radiator::Plan& p, std::size_t s, const float* root, 
       const float* __restrict y = root + (static_cast<std::size_t>(st.first[j]) + static_cast<std::size_t>(pt)) * stride + offset;
       const auto wa = static_cast<float>(w[static_cast<std::size_t>(pt)]);
       for (std::size_t a = 0; a < n_phi; ++a) {
-        for (std::size_t k = 0; k < o2; ++k) tmp[a * o2 + k] += wa * y[a * (stride / n_phi) + k];
+        for (std::size_t k = 0; k < o2; ++k) tmp[a * o2 + k] += wa * y[a * per_azimuth + k];
       }
     }
     const double pr = p.root_phase[s][2 * j], pi = p.root_phase[s][2 * j + 1];
-    double* __restrict acc = p.accumulated[s].data() + j * width;
-    for (std::size_t k = 0; k < width; k += 2) {
-      const double re = tmp[k], im = tmp[k + 1];
-      acc[k] = pr * re - pi * im;
-      acc[k + 1] = pr * im + pi * re;
+    for (std::size_t a = 0; a < n_phi; ++a) {
+      Eigen::MatrixXcd& r = results[a * sets + s];
+      for (std::size_t q = 0; q < o2 / 2; ++q) {
+        const double re = tmp[a * o2 + 2 * q], im = tmp[a * o2 + 2 * q + 1];
+        r(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(q)) = Complex(pr * re - pi * im, pr * im + pi * re);
+      }
     }
   }
 }
 
 void interpolate_root(Radiator::Plan& p, std::size_t s, const float* root, std::size_t stride, std::size_t offset,
-                      std::size_t n_phi, std::size_t o2) {
-  if (o2 == 8) return interpolate_root_impl<8>(p, s, root, stride, offset, n_phi, o2);
-  interpolate_root_impl<0>(p, s, root, stride, offset, n_phi, o2);
-}
-// accumulated[s] ([direction][azimuth][output] (re, im)) → results[a · sets + s].
-void copy_results(const std::vector<std::vector<double>>& accumulated, std::span<const RadiationTargets> layout,
-                  std::size_t n_phi, std::vector<Eigen::MatrixXcd>& results) {
-  const std::size_t sets = layout.size();
-  for (std::size_t a = 0; a < n_phi; ++a) {
-    for (std::size_t s = 0; s < sets; ++s) {
-      const std::size_t n_dir = layout[s].phi_o_rad.size(), outputs = static_cast<std::size_t>(layout[s].outputs);
-      Eigen::MatrixXcd& r = results[a * sets + s];
-      r.resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(outputs));
-      for (std::size_t j = 0; j < n_dir; ++j) {
-        const double* v = accumulated[s].data() + 2 * ((j * n_phi + a) * outputs);
-        for (std::size_t q = 0; q < outputs; ++q) {
-          r(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(q)) = Complex(v[2 * q], v[2 * q + 1]);
-        }
-      }
-    }
-  }
+                      std::size_t o2, std::span<Eigen::MatrixXcd> results, std::size_t sets) {
+  if (o2 == 8) return interpolate_root_impl<8>(p, s, root, stride, offset, o2, results, sets);
+  interpolate_root_impl<0>(p, s, root, stride, offset, o2, results, sets);
 }
 }  // namespace
 
@@ -324,12 +310,8 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
   for (const RadiationTargets& t : layout) q_lo = std::min(q_lo, t.first_output), q_hi = std::max(q_hi, t.first_output + t.outputs);
   const int outputs = q_hi - q_lo;
   const std::size_t stride = n_phi * 2 * static_cast<std::size_t>(outputs);  // floats per grid point
-  // Every entry of rows is written before it is read, every entry of accumulated once: no clearing.
+  // Every entry of rows is written before it is read: no clearing.
   p.rows.resize(chunks * samples * stride);
-  p.accumulated.resize(sets);
-  for (std::size_t s = 0; s < sets; ++s) {
-    p.accumulated[s].resize(layout[s].phi_o_rad.size() * n_phi * 2 * static_cast<std::size_t>(layout[s].outputs));
-  }
   for (std::size_t ci = 0; ci < chunks; ++ci) {
     const auto& c = p.tree.chunks[ci];
     const std::size_t v0 = c.first, nv = c.count + 2;
@@ -354,10 +336,9 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
   aggregate(p.tree, p.rows.data(), stride, p.node_samples);
   const float* root = chunks == 1 ? p.rows.data() : p.node_samples.back().data();
   for (std::size_t s = 0; s < sets; ++s) {
-    interpolate_root(p, s, root, stride, 2 * static_cast<std::size_t>(layout[s].first_output - q_lo), n_phi,
-                     2 * static_cast<std::size_t>(layout[s].outputs));
+    interpolate_root(p, s, root, stride, 2 * static_cast<std::size_t>(layout[s].first_output - q_lo),
+                     2 * static_cast<std::size_t>(layout[s].outputs), results, sets);
   }
-  copy_results(p.accumulated, layout, n_phi, results);
 }
 
 }  // namespace plumage::detail

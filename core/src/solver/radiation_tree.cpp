@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <stdexcept>
 
 #include "plumage/conventions.hpp"
+#include "plumage/error.hpp"
 
 namespace plumage::detail {
 
@@ -86,8 +86,7 @@ struct Builder {
     const auto [centre, radius] = enclosing(vertices, first.first, last.first + last.count + 1);
     node.centre = centre;
     node.grid = intervals.size();
-    static const double merge_os = std::getenv("MERGE_OS") ? std::atof(std::getenv("MERGE_OS")) : options.oversampling;
-    intervals.push_back(static_cast<std::size_t>(std::ceil(merge_os * band_limit(gamma0 * radius))));
+    intervals.push_back(static_cast<std::size_t>(std::ceil(options.merge_oversampling * band_limit(gamma0 * radius))));
     tree.nodes.push_back(std::move(node));
     return tree.nodes.size() - 1;
   }
@@ -99,19 +98,26 @@ Stencil make_stencil(std::span<const double> phi_o_rad, const SampleGrid& grid, 
   Stencil s;
   s.points = points;
   const int half = points / 2;
+  std::array<double, kMaxStencilPoints> inverse_denominator{};
+  for (int a = 0; a < points; ++a) {
+    double den = 1.0;
+    for (int b = 0; b < points; ++b) den *= b == a ? 1.0 : a - b;
+    inverse_denominator[static_cast<std::size_t>(a)] = 1.0 / den;
+  }
+  s.first.reserve(phi_o_rad.size()), s.weight.reserve(phi_o_rad.size());
+  s.sin_phi.reserve(phi_o_rad.size()), s.cos_phi.reserve(phi_o_rad.size());
   for (const double phi : phi_o_rad) {
     const double t = (phi - grid.lo) / grid.step;
     const double base = std::floor(t) - (half - 1);
     const double f = t - base;  // in [half − 1, half): position among nodes 0 … points − 1
-    std::array<double, kMaxStencilPoints> w{};
+    // w_a = Π_{b≠a} (f − b) / Π_{b≠a} (a − b): the numerators from prefix and suffix products.
+    std::array<double, kMaxStencilPoints> w{}, right{};
+    right[static_cast<std::size_t>(points - 1)] = 1.0;
+    for (int a = points - 1; a > 0; --a) right[static_cast<std::size_t>(a - 1)] = right[static_cast<std::size_t>(a)] * (f - a);
+    double left = 1.0;
     for (int a = 0; a < points; ++a) {
-      double num = 1.0, den = 1.0;
-      for (int b = 0; b < points; ++b) {
-        if (b == a) continue;
-        num *= f - b;
-        den *= a - b;
-      }
-      w[a] = num / den;
+      w[static_cast<std::size_t>(a)] = left * right[static_cast<std::size_t>(a)] * inverse_denominator[static_cast<std::size_t>(a)];
+      left *= f - a;
     }
     s.first.push_back(static_cast<Eigen::Index>(base));
     s.weight.push_back(w);
@@ -124,7 +130,6 @@ Stencil make_stencil(std::span<const double> phi_o_rad, const SampleGrid& grid, 
 FarFieldTree far_field_tree(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
                             const ChunkingOptions& options, bool with_transfers) {
   FarFieldTree tree;
-  tree.stencil_points = options.stencil_points;
   const std::size_t nodes = vertices.size() - 2;
   double total = 0.0;
   for (const double h : segment_length) total += h;
@@ -145,19 +150,24 @@ FarFieldTree far_field_tree(std::span<const Vec2> vertices, std::span<const doub
   Builder builder{vertices, gamma0, options, tree,
                   {static_cast<std::size_t>(std::ceil(options.oversampling * leaf_band))}};
   builder.build(0, tree.chunks.size());
+  // The stencils reading the chunks' grid (to their parents, or a single chunk to the targets)
+  // have stencil_points, those reading an internal node's grid merge_stencil_points.
+  const std::size_t grids = builder.intervals.size();
+  tree.grid_points.assign(grids, options.merge_stencil_points);
+  tree.grid_points[0] = options.stencil_points;
   // Padding, from the root down: the root's stencils reach the targets in [−π/2, π/2], a child's
   // the parent's outermost grid point (π/2 + pad_P·step_P) and half a stencil beyond it. The
   // chunks share the largest padding any of them needs.
-  const std::size_t half = static_cast<std::size_t>(options.stencil_points / 2), grids = builder.intervals.size();
+  auto half = [&](std::size_t g) { return static_cast<std::size_t>(tree.grid_points[g] / 2); };
   std::vector<std::size_t> pad(grids, 0);
-  pad[tree.root().grid] = half;
+  pad[tree.root().grid] = half(tree.root().grid);
   for (std::size_t n = tree.nodes.size(); n-- > tree.chunks.size();) {
     const auto& node = tree.nodes[n];
     const double reach = static_cast<double>(pad[node.grid]) / static_cast<double>(builder.intervals[node.grid]);
     for (const auto& t : node.children) {
       const std::size_t g = tree.nodes[t.child].grid;
       const auto needed =
-          half + static_cast<std::size_t>(std::ceil(reach * static_cast<double>(builder.intervals[g]) - 1e-9));
+          half(g) + static_cast<std::size_t>(std::ceil(reach * static_cast<double>(builder.intervals[g]) - 1e-9));
       pad[g] = std::max(pad[g], needed);
     }
   }
@@ -168,16 +178,18 @@ FarFieldTree far_field_tree(std::span<const Vec2> vertices, std::span<const doub
     const SampleGrid& grid = tree.grids[node.grid];
     for (auto& t : node.children) {
       const FarFieldTree::Node& child = tree.nodes[t.child];
-      const Stencil s = make_stencil(grid.phi, tree.grids[child.grid], options.stencil_points);
+      const int points = tree.grid_points[child.grid];
+      const Stencil s = make_stencil(grid.phi, tree.grids[child.grid], points);
       const Vec2 d = child.centre - node.centre;
       t.first.resize(grid.samples);
-      t.weight.resize(grid.samples * static_cast<std::size_t>(options.stencil_points));
+      t.weight.resize(grid.samples * static_cast<std::size_t>(points));
       t.phase.resize(2 * grid.samples);
       for (std::size_t p = 0; p < grid.samples; ++p) {
         t.first[p] = static_cast<std::int32_t>(s.first[p]);
-        if (s.first[p] < 0 || s.first[p] + options.stencil_points > static_cast<Eigen::Index>(tree.grids[child.grid].samples)) throw std::runtime_error("DEBUG stencil out of range");
-        for (int a = 0; a < options.stencil_points; ++a)
-          t.weight[p * static_cast<std::size_t>(options.stencil_points) + static_cast<std::size_t>(a)] =
+        if (s.first[p] < 0 || s.first[p] + points > static_cast<Eigen::Index>(tree.grids[child.grid].samples))
+          throw Error("radiate: a merge stencil leaves its child's grid (padding)");
+        for (int a = 0; a < points; ++a)
+          t.weight[p * static_cast<std::size_t>(points) + static_cast<std::size_t>(a)] =
               static_cast<float>(s.weight[p][static_cast<std::size_t>(a)]);
         const double angle = -gamma0 * (s.sin_phi[p] * d.x + s.cos_phi[p] * d.z);
         t.phase[2 * p] = static_cast<float>(std::cos(angle));
@@ -203,19 +215,21 @@ void transfer(const FarFieldTree::Transfer& t, int points, const float* __restri
     for (int a = 1; a < points; ++a) {
       const float* __restrict ya = y + static_cast<std::size_t>(a) * width;
       const float wa = w[a];
-      for (std::size_t k = 0; k < width; ++k) tmp[k] += wa * ya[k];
+      for (std::size_t k = 0; k < width; ++k) tmp[k] = std::fma(wa, ya[k], tmp[k]);
     }
     const float pr = t.phase[2 * p], pi = t.phase[2 * p + 1];
     float* __restrict out = parent + p * width;
+    // Explicit fused products: the same roundings in every lane whatever the width and the
+    // compiler's contraction choices (one azimuth at a time gives the bits of all at once).
     if (first_child) {
       for (std::size_t k = 0; k < width; k += 2) {
-        out[k] = pr * tmp[k] - pi * tmp[k + 1];
-        out[k + 1] = pr * tmp[k + 1] + pi * tmp[k];
+        out[k] = std::fma(pr, tmp[k], -(pi * tmp[k + 1]));
+        out[k + 1] = std::fma(pr, tmp[k + 1], pi * tmp[k]);
       }
     } else {
       for (std::size_t k = 0; k < width; k += 2) {
-        out[k] += pr * tmp[k] - pi * tmp[k + 1];
-        out[k + 1] += pr * tmp[k + 1] + pi * tmp[k];
+        out[k] += std::fma(pr, tmp[k], -(pi * tmp[k + 1]));
+        out[k + 1] += std::fma(pr, tmp[k + 1], pi * tmp[k]);
       }
     }
   }
@@ -238,9 +252,9 @@ void aggregate(const FarFieldTree& tree, const float* leaf_samples, std::size_t 
       const float* child = t.child < chunks ? leaf_samples + t.child * leaf_samples_per_chunk * width
                                             : node_samples[t.child - chunks].data();
       if (width == 16) {
-        transfer<16>(t, tree.stencil_points, child, out.data(), samples, width, c == 0, tmp.data());
+        transfer<16>(t, tree.grid_points[tree.nodes[t.child].grid], child, out.data(), samples, width, c == 0, tmp.data());
       } else {
-        transfer<0>(t, tree.stencil_points, child, out.data(), samples, width, c == 0, tmp.data());
+        transfer<0>(t, tree.grid_points[tree.nodes[t.child].grid], child, out.data(), samples, width, c == 0, tmp.data());
       }
     }
   }

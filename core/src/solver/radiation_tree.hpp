@@ -67,9 +67,10 @@ struct FarFieldTree {
   std::size_t max_count = 0;
   std::vector<SampleGrid> grids;  // grids[0]: the chunks' grid; then one per internal node
   std::vector<Node> nodes;        // 0 … chunks − 1 the chunks; then the internal nodes, children first
-  int stencil_points = 10;
+  std::vector<int> grid_points;   // Lagrange points of the stencils that read each grid
 
   const Node& root() const { return nodes.back(); }
+  int root_points() const { return grid_points[root().grid]; }
   std::size_t root_index() const { return nodes.size() - 1; }
 };
 
