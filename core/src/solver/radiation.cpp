@@ -63,6 +63,11 @@ void radiate_exact(std::span<const Vec2> vertices, std::span<const double> segme
 
 }  // namespace
 
+// ê1 = (cos φ, 0, −sin φ), ê2 = (sin θ_i sin φ, cos θ_i, sin θ_i cos φ) per grid point, by component.
+struct Polarizations {
+  std::vector<double> e1x, e1z, e2x, e2y, e2z;
+};
+
 struct Radiator::Plan {
   std::span<const Vec2> vertices;
   std::span<const double> segment_length;
@@ -72,7 +77,8 @@ struct Radiator::Plan {
   FarFieldTree tree;                                  // chunks, merge tree, grids (radiation_tree.hpp)
   std::vector<Stencil> stencils;                      // per target set, on the root's grid
   std::vector<OutgoingPhases> outgoing;               // per chunk, on the chunks' grid
-  std::vector<std::array<double, 3>> e1, e2;          // polarization directions at the chunks' grid points
+  Polarizations polarization;                         // ê1, ê2 at the chunks' grid points
+  std::vector<float> projected;                        // one group's projected samples
   // e^{−iγ0 ρ̂_j·r_root} per target set and direction (re, im).
   std::vector<std::vector<double>> root_phase;
   FactoredTentKernel kernel;
@@ -139,11 +145,12 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
     }
   }
   const double st = std::sin(theta_i_rad), ct = std::cos(theta_i_rad);
-  p.e1.clear(), p.e2.clear();
+  Polarizations& pol = p.polarization;
+  for (auto* v : {&pol.e1x, &pol.e1z, &pol.e2x, &pol.e2y, &pol.e2z}) v->clear();
   for (const double phi : leaf.phi) {
     const double sp = std::sin(phi), cp = std::cos(phi);
-    p.e1.push_back({cp, 0.0, -sp});
-    p.e2.push_back({st * sp, ct, st * cp});
+    pol.e1x.push_back(cp), pol.e1z.push_back(-sp);
+    pol.e2x.push_back(st * sp), pol.e2y.push_back(ct), pol.e2z.push_back(st * cp);
   }
   p.outgoing.resize(chunks);
   for (std::size_t ci = 0; ci < chunks; ++ci) {
@@ -184,38 +191,63 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
 namespace {
 // Project the six sums of each group on ê1, ê2 (radiation.hpp) at every grid point of a chunk's
 // product [Re K; Im K]·[Re A | Im A] (azimuth a), into the chunk's rows (outputs q_lo …
-// q_lo + outputs − 1). The sums are formed in double whatever the product's precision.
+// q_lo + outputs − 1). The sums are formed in double whatever the product's precision; one
+// group at a time over all grid points (contiguous columns: vector loops), then scattered into
+// the rows' [grid point][azimuth][output] layout.
 template <class Matrix>
-__attribute__((noinline)) void project_samples(const Matrix& product, const std::vector<std::array<double, 3>>& e1s,
-                     const std::vector<std::array<double, 3>>& e2s, int q_lo, int outputs, std::size_t a,
-                     std::size_t n_phi, float* __restrict rows) {
+void project_samples(const Matrix& product, const Polarizations& pol, int q_lo, int outputs, std::size_t a,
+                     std::size_t n_phi, float* __restrict rows, std::vector<float>& scratch) {
+  using T = typename Matrix::Scalar;
   const Eigen::Index P = product.rows() / 2, columns = product.cols() / 2;
+  const auto n = static_cast<std::size_t>(P);
   const int g_lo = q_lo / 2, g_hi = (q_lo + outputs + 1) / 2;
   const auto width = static_cast<std::size_t>(outputs) * 2;
-  for (Eigen::Index j = 0; j < P; ++j) {
-    const auto& e1 = e1s[static_cast<std::size_t>(j)];
-    const auto& e2 = e2s[static_cast<std::size_t>(j)];
-    auto sum = [&](Eigen::Index col) {
-      const double rr = product(j, col), ii = product(P + j, columns + col);
-      const double ri = product(j, columns + col), ir = product(P + j, col);
-      return Complex(rr - ii, ri + ir);
-    };
-    float* out = rows + (static_cast<std::size_t>(j) * n_phi + a) * width;
-    for (int g = g_lo; g < g_hi; ++g) {
-      const Eigen::Index b = 6 * g;
-      const Complex s0 = sum(b), s1 = sum(b + 1), s2 = sum(b + 2), s3 = sum(b + 3), s4 = sum(b + 4), s5 = sum(b + 5);
-      const Complex e1j = e1[0] * s0 + e1[2] * s2;
-      const Complex e2j = e2[0] * s0 + e2[1] * s1 + e2[2] * s2;
-      const Complex e1m = e1[0] * s3 + e1[2] * s5;
-      const Complex e2m = e2[0] * s3 + e2[1] * s4 + e2[2] * s5;
-      const Complex o[2] = {-e1j - e2m, -e2j + e1m};
-      for (int h = 0; h < 2; ++h) {
-        const int k = 2 * g + h - q_lo;
-        if (k < 0 || k >= outputs) continue;
-        out[2 * k] = static_cast<float>(o[h].real());
-        out[2 * k + 1] = static_cast<float>(o[h].imag());
-      }
+  scratch.resize(4 * n);
+  const double* __restrict e1x = pol.e1x.data();
+  const double* __restrict e1z = pol.e1z.data();
+  const double* __restrict e2x = pol.e2x.data();
+  const double* __restrict e2y = pol.e2y.data();
+  const double* __restrict e2z = pol.e2z.data();
+  for (int g = g_lo; g < g_hi; ++g) {
+    const Eigen::Index b = 6 * g;
+    // Column c of Re K·Re A, Re K·Im A, Im K·Re A, Im K·Im A.
+    auto rr = [&](int c) { return product.data() + (b + c) * 2 * P; };
+    auto ri = [&](int c) { return product.data() + (columns + b + c) * 2 * P; };
+    auto ir = [&](int c) { return product.data() + (b + c) * 2 * P + P; };
+    auto ii = [&](int c) { return product.data() + (columns + b + c) * 2 * P + P; };
+    const T *__restrict rr0 = rr(0), *__restrict rr1 = rr(1), *__restrict rr2 = rr(2), *__restrict rr3 = rr(3),
+            *__restrict rr4 = rr(4), *__restrict rr5 = rr(5);
+    const T *__restrict ri0 = ri(0), *__restrict ri1 = ri(1), *__restrict ri2 = ri(2), *__restrict ri3 = ri(3),
+            *__restrict ri4 = ri(4), *__restrict ri5 = ri(5);
+    const T *__restrict ir0 = ir(0), *__restrict ir1 = ir(1), *__restrict ir2 = ir(2), *__restrict ir3 = ir(3),
+            *__restrict ir4 = ir(4), *__restrict ir5 = ir(5);
+    const T *__restrict ii0 = ii(0), *__restrict ii1 = ii(1), *__restrict ii2 = ii(2), *__restrict ii3 = ii(3),
+            *__restrict ii4 = ii(4), *__restrict ii5 = ii(5);
+    float* __restrict o = scratch.data();
+    for (std::size_t j = 0; j < n; ++j) {
+      // s_c = Σ K·A (complex) for the six columns: (rr − ii) + i (ri + ir)
+      const double s0r = double(rr0[j]) - double(ii0[j]), s0i = double(ri0[j]) + double(ir0[j]);
+      const double s1r = double(rr1[j]) - double(ii1[j]), s1i = double(ri1[j]) + double(ir1[j]);
+      const double s2r = double(rr2[j]) - double(ii2[j]), s2i = double(ri2[j]) + double(ir2[j]);
+      const double s3r = double(rr3[j]) - double(ii3[j]), s3i = double(ri3[j]) + double(ir3[j]);
+      const double s4r = double(rr4[j]) - double(ii4[j]), s4i = double(ri4[j]) + double(ir4[j]);
+      const double s5r = double(rr5[j]) - double(ii5[j]), s5i = double(ri5[j]) + double(ir5[j]);
+      // o1 = −ê1·S_J − ê2·S_M, o2 = −ê2·S_J + ê1·S_M (ê1 has no y component)
+      const double e1jr = e1x[j] * s0r + e1z[j] * s2r, e1ji = e1x[j] * s0i + e1z[j] * s2i;
+      const double e2jr = e2x[j] * s0r + e2y[j] * s1r + e2z[j] * s2r, e2ji = e2x[j] * s0i + e2y[j] * s1i + e2z[j] * s2i;
+      const double e1mr = e1x[j] * s3r + e1z[j] * s5r, e1mi = e1x[j] * s3i + e1z[j] * s5i;
+      const double e2mr = e2x[j] * s3r + e2y[j] * s4r + e2z[j] * s5r, e2mi = e2x[j] * s3i + e2y[j] * s4i + e2z[j] * s5i;
+      o[4 * j] = static_cast<float>(-e1jr - e2mr);
+      o[4 * j + 1] = static_cast<float>(-e1ji - e2mi);
+      o[4 * j + 2] = static_cast<float>(-e2jr + e1mr);
+      o[4 * j + 3] = static_cast<float>(-e2ji + e1mi);
     }
+    const int k_first = std::max(2 * g, q_lo), k_end = std::min(2 * g + 2, q_lo + outputs);
+    if (k_end <= k_first) continue;
+    const auto copy = static_cast<std::size_t>(2 * (k_end - k_first));
+    const float* from = o + 2 * (k_first - 2 * g);
+    float* to = rows + a * width + static_cast<std::size_t>(2 * (k_first - q_lo));
+    for (std::size_t j = 0; j < n; ++j) std::copy(from + 4 * j, from + 4 * j + copy, to + j * n_phi * width);
   }
 }
 
@@ -323,13 +355,13 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
                        std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split_f);
         p.product_f.noalias() = p.kernel_split_f * p.amplitude_split_f[a].middleRows(
                                                        static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
-        project_samples(p.product_f, p.e1, p.e2, q_lo, outputs, a, n_phi, rows);
+        project_samples(p.product_f, p.polarization, q_lo, outputs, a, n_phi, rows, p.projected);
       } else {
         p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
                        std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split);
         p.product.noalias() = p.kernel_split * p.amplitude_split[a].middleRows(static_cast<Eigen::Index>(c.first),
                                                                              static_cast<Eigen::Index>(c.count));
-        project_samples(p.product, p.e1, p.e2, q_lo, outputs, a, n_phi, rows);
+        project_samples(p.product, p.polarization, q_lo, outputs, a, n_phi, rows, p.projected);
       }
     }
   }
