@@ -84,9 +84,9 @@ struct Radiator::Plan {
   FactoredTentKernel kernel;
   bool single_precision = false;                       // ChunkingOptions::single_precision_gemm
   Eigen::MatrixXd kernel_split, product;               // [Re K; Im K] (2P × nodes), its product
-  std::vector<Eigen::MatrixXd> amplitude_split;        // per azimuth: [Re A | Im A]
+  Eigen::MatrixXd amplitude_split;                     // one chunk's rows of one azimuth: [Re A | Im A]
   Eigen::MatrixXf kernel_split_f, product_f;           // the same in float
-  std::vector<Eigen::MatrixXf> amplitude_split_f;
+  Eigen::MatrixXf amplitude_split_f;
   // Every chunk's projected samples, [chunk][grid point][azimuth][output] (re, im), outputs
   // first_output … first_output + outputs − 1 of the union of the target sets, in float (they
   // carry the float GEMM's rounding already); the internal nodes' samples, [grid point][azimuth]
@@ -182,7 +182,7 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
   bytes += node_points * 3.0 * (4.0 + 4.0 * stencil + 8.0);            // transfers (≤ 3 children)
   bytes += (directions + 4.0 * static_cast<double>(target_sizes.size())) * (16.0 + 8.0 * stencil);  // root stencils
   bytes += 2.0 * samples * static_cast<double>(tree.max_count + 2) * 8.0 * 2.0;  // kernel_split, product
-  bytes += static_cast<double>(n_phi) * (verts - 2.0) * 2.0 * c * 8.0;  // amplitude_split
+  bytes += static_cast<double>(tree.max_count) * 2.0 * c * 8.0;         // amplitude_split
   bytes += static_cast<double>(n_phi) * ((chunks * samples + node_points) * 4.0 + directions * 8.0) * 2.0 * outputs;
   bytes += static_cast<double>(tree.max_count + 2) * 8.0 * 13.0;      // the kernel's per-node buffers
   return bytes;
@@ -323,19 +323,8 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
   }
   const auto columns = amplitudes.front().cols();
   const std::size_t samples = p.tree.grids.front().samples, chunks = p.tree.chunks.size();
-  p.amplitude_split.resize(n_phi);
-  p.amplitude_split_f.resize(n_phi);
   for (std::size_t a = 0; a < n_phi; ++a) {
     if (amplitudes[a].cols() != columns) throw Error("radiate: azimuths differ in current columns");
-    if (p.single_precision) {
-      p.amplitude_split_f[a].resize(amplitudes[a].rows(), 2 * columns);
-      p.amplitude_split_f[a].leftCols(columns) = amplitudes[a].real().cast<float>();
-      p.amplitude_split_f[a].rightCols(columns) = amplitudes[a].imag().cast<float>();
-    } else {
-      p.amplitude_split[a].resize(amplitudes[a].rows(), 2 * columns);
-      p.amplitude_split[a].leftCols(columns) = amplitudes[a].real();
-      p.amplitude_split[a].rightCols(columns) = amplitudes[a].imag();
-    }
   }
   // The outputs any target set wants, merged up the tree together.
   int q_lo = layout.front().first_output, q_hi = q_lo;
@@ -349,18 +338,24 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
     const std::size_t v0 = c.first, nv = c.count + 2;
     float* rows = p.rows.data() + ci * samples * stride;
     for (std::size_t a = 0; a < n_phi; ++a) {
-      // Real arithmetic: [Re K; Im K]·[Re A | Im A] holds the four real products of K·A.
+      // Real arithmetic: [Re K; Im K]·[Re A | Im A] holds the four real products of K·A. The
+      // chunk's rows are split (and rounded) here, into a buffer that stays in cache for the GEMM.
+      const auto rows_a = amplitudes[a].middleRows(static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
       if (p.single_precision) {
+        p.amplitude_split_f.resize(rows_a.rows(), 2 * columns);
+        p.amplitude_split_f.leftCols(columns) = rows_a.real().cast<float>();
+        p.amplitude_split_f.rightCols(columns) = rows_a.imag().cast<float>();
         p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
                        std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split_f);
-        p.product_f.noalias() = p.kernel_split_f * p.amplitude_split_f[a].middleRows(
-                                                       static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
+        p.product_f.noalias() = p.kernel_split_f * p.amplitude_split_f;
         project_samples(p.product_f, p.polarization, q_lo, outputs, a, n_phi, rows, p.projected);
       } else {
+        p.amplitude_split.resize(rows_a.rows(), 2 * columns);
+        p.amplitude_split.leftCols(columns) = rows_a.real();
+        p.amplitude_split.rightCols(columns) = rows_a.imag();
         p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
                        std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split);
-        p.product.noalias() = p.kernel_split * p.amplitude_split[a].middleRows(static_cast<Eigen::Index>(c.first),
-                                                                             static_cast<Eigen::Index>(c.count));
+        p.product.noalias() = p.kernel_split * p.amplitude_split;
         project_samples(p.product, p.polarization, q_lo, outputs, a, n_phi, rows, p.projected);
       }
     }
