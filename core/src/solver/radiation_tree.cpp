@@ -108,8 +108,10 @@ Stencil make_stencil(std::span<const double> phi_o_rad, const SampleGrid& grid, 
   s.sin_phi.reserve(phi_o_rad.size()), s.cos_phi.reserve(phi_o_rad.size());
   for (const double phi : phi_o_rad) {
     const double t = (phi - grid.lo) / grid.step;
-    const double base = std::floor(t) - (half - 1);
-    const double f = t - base;  // in [half − 1, half): position among nodes 0 … points − 1
+    // The stencil centred on the target (f in [half − 1, half): position among nodes 0 … points − 1),
+    // shifted inwards where it would leave the grid (the chunks' grid, see far_field_tree).
+    const double base = std::clamp(std::floor(t) - (half - 1), 0.0, static_cast<double>(grid.samples) - points);
+    const double f = t - base;
     // w_a = Π_{b≠a} (f − b) / Π_{b≠a} (a − b): the numerators from prefix and suffix products.
     std::array<double, kMaxStencilPoints> w{}, right{};
     right[static_cast<std::size_t>(points - 1)] = 1.0;
@@ -171,6 +173,13 @@ FarFieldTree far_field_tree(std::span<const Vec2> vertices, std::span<const doub
       pad[g] = std::max(pad[g], needed);
     }
   }
+  // The chunks' grid (its samples are the kernels' and GEMMs' rows) keeps the padding of the
+  // targets' stencils alone: a parent's points beyond ±(π/2 + 5 chunk steps), which serve only
+  // the last ~2° of targets next to ±π/2, are read by stencils shifted inwards (make_stencil
+  // clamps). Measured: relative L2 vs the exact sum unchanged to 3 digits on the production
+  // units, error of the root's samples within 1.5 rad < |φ| ≤ π/2 1.6e-7 (test_radiation_tree.cpp),
+  // 7 % fewer chunk samples (issue 26).
+  pad[0] = std::min(pad[0], half(0));
   for (std::size_t g = 0; g < grids; ++g) tree.grids.push_back(sample_grid(builder.intervals[g], pad[g]));
   if (!with_transfers) return tree;
   for (std::size_t n = tree.chunks.size(); n < tree.nodes.size(); ++n) {
