@@ -141,7 +141,10 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
     for (std::size_t j = 0; j < n_dir; j += 4) {
       simd::v4d sn, cs;
       simd::sincos(simd::v4d{angle[j], angle[j + 1], angle[j + 2], angle[j + 3]}, sn, cs);
-      for (std::size_t l = 0; l < 4; ++l) p.root_phase[s][2 * (j + l)] = cs[l], p.root_phase[s][2 * (j + l) + 1] = sn[l];
+      for (std::size_t l = 0; l < 4; ++l) {
+        p.root_phase[s][2 * (j + l)] = cs[l];
+        p.root_phase[s][2 * (j + l) + 1] = sn[l];
+      }
     }
   }
   const double st = std::sin(theta_i_rad), ct = std::cos(theta_i_rad);
@@ -173,7 +176,8 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
     return bytes + verts * block * 16.0 * 2.0 + block * c * 16.0 * 2.0 + verts * 8.0 * 12.0;
   }
   const FarFieldTree tree = far_field_tree(vertices, segment_length, gamma0, options, false);
-  const double samples = static_cast<double>(tree.grids.front().samples), chunks = static_cast<double>(tree.chunks.size());
+  const double samples = static_cast<double>(tree.grids.front().samples);
+  const double chunks = static_cast<double>(tree.chunks.size());
   double node_points = 0.0;  // grid points of the internal nodes (their samples, transfers)
   for (std::size_t n = tree.chunks.size(); n < tree.nodes.size(); ++n)
     node_points += static_cast<double>(tree.grids[tree.nodes[n].grid].samples);
@@ -264,12 +268,15 @@ void interpolate_root_impl(Radiator::Plan& p, std::size_t s, const float* root, 
   p.chunk_acc.resize(width);
   float* __restrict tmp = p.chunk_acc.data();
   const std::size_t n_dir = p.target_phi[s].size();
-  for (std::size_t a = 0; a < n_phi; ++a) results[a * sets + s].resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(o2 / 2));
+  for (std::size_t a = 0; a < n_phi; ++a) {
+    results[a * sets + s].resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(o2 / 2));
+  }
   for (std::size_t j = 0; j < n_dir; ++j) {
     const auto& w = st.weight[j];
     for (std::size_t k = 0; k < width; ++k) tmp[k] = 0.0f;
     for (int pt = 0; pt < st.points; ++pt) {
-      const float* __restrict y = root + (static_cast<std::size_t>(st.first[j]) + static_cast<std::size_t>(pt)) * stride + offset;
+      const auto point = static_cast<std::size_t>(st.first[j]) + static_cast<std::size_t>(pt);
+      const float* __restrict y = root + point * stride + offset;
       const auto wa = static_cast<float>(w[static_cast<std::size_t>(pt)]);
       for (std::size_t a = 0; a < n_phi; ++a) {
         for (std::size_t k = 0; k < o2; ++k) tmp[a * o2 + k] += wa * y[a * per_azimuth + k];
@@ -328,7 +335,10 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
   }
   // The outputs any target set wants, merged up the tree together.
   int q_lo = layout.front().first_output, q_hi = q_lo;
-  for (const RadiationTargets& t : layout) q_lo = std::min(q_lo, t.first_output), q_hi = std::max(q_hi, t.first_output + t.outputs);
+  for (const RadiationTargets& t : layout) {
+    q_lo = std::min(q_lo, t.first_output);
+    q_hi = std::max(q_hi, t.first_output + t.outputs);
+  }
   const int outputs = q_hi - q_lo;
   const std::size_t stride = n_phi * 2 * static_cast<std::size_t>(outputs);  // floats per grid point
   // Every entry of rows is written before it is read: no clearing.
@@ -340,7 +350,8 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
     for (std::size_t a = 0; a < n_phi; ++a) {
       // Real arithmetic: [Re K; Im K]·[Re A | Im A] holds the four real products of K·A. The
       // chunk's rows are split (and rounded) here, into a buffer that stays in cache for the GEMM.
-      const auto rows_a = amplitudes[a].middleRows(static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
+      const auto rows_a =
+          amplitudes[a].middleRows(static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
       if (p.single_precision) {
         p.amplitude_split_f.resize(rows_a.rows(), 2 * columns);
         p.amplitude_split_f.leftCols(columns) = rows_a.real().cast<float>();

@@ -51,8 +51,8 @@ struct RadiationTargets {
 // not depend on the incident phase χ — the chunks, the merge tree and its grids, the merge and
 // target stencils with their shift phases, the root's phases e^{−iγ0 ρ̂_j·r_root} at the targets
 // and the outgoing kernel phases (OutgoingPhases) — is set up once; radiate_all() then costs one
-// complex product per kernel entry instead of a sincos. Chunked evaluation needs every target azimuth in [−π/2, π/2]; otherwise
-// the exact sum is used.
+// complex product per kernel entry instead of a sincos. Chunked evaluation needs every target
+// azimuth in [−π/2, π/2]; otherwise the exact sum is used.
 class Radiator {
  public:
   Radiator(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,

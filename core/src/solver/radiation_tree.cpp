@@ -115,10 +115,13 @@ Stencil make_stencil(std::span<const double> phi_o_rad, const SampleGrid& grid, 
     // w_a = Π_{b≠a} (f − b) / Π_{b≠a} (a − b): the numerators from prefix and suffix products.
     std::array<double, kMaxStencilPoints> w{}, right{};
     right[static_cast<std::size_t>(points - 1)] = 1.0;
-    for (int a = points - 1; a > 0; --a) right[static_cast<std::size_t>(a - 1)] = right[static_cast<std::size_t>(a)] * (f - a);
+    for (int a = points - 1; a > 0; --a) {
+      right[static_cast<std::size_t>(a - 1)] = right[static_cast<std::size_t>(a)] * (f - a);
+    }
     double left = 1.0;
     for (int a = 0; a < points; ++a) {
-      w[static_cast<std::size_t>(a)] = left * right[static_cast<std::size_t>(a)] * inverse_denominator[static_cast<std::size_t>(a)];
+      const auto i = static_cast<std::size_t>(a);
+      w[i] = left * right[i] * inverse_denominator[i];
       left *= f - a;
     }
     s.first.push_back(static_cast<Eigen::Index>(base));
@@ -260,10 +263,11 @@ void aggregate(const FarFieldTree& tree, const float* leaf_samples, std::size_t 
       const FarFieldTree::Transfer& t = node.children[c];
       const float* child = t.child < chunks ? leaf_samples + t.child * leaf_samples_per_chunk * width
                                             : node_samples[t.child - chunks].data();
+      const int points = tree.grid_points[tree.nodes[t.child].grid];
       if (width == 16) {
-        transfer<16>(t, tree.grid_points[tree.nodes[t.child].grid], child, out.data(), samples, width, c == 0, tmp.data());
+        transfer<16>(t, points, child, out.data(), samples, width, c == 0, tmp.data());
       } else {
-        transfer<0>(t, tree.grid_points[tree.nodes[t.child].grid], child, out.data(), samples, width, c == 0, tmp.data());
+        transfer<0>(t, points, child, out.data(), samples, width, c == 0, tmp.data());
       }
     }
   }
