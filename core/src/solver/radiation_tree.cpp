@@ -6,6 +6,7 @@
 
 #include "plumage/conventions.hpp"
 #include "plumage/error.hpp"
+#include "plumage/simd_math.hpp"
 
 namespace plumage::detail {
 
@@ -94,7 +95,7 @@ struct Builder {
 
 }  // namespace
 
-Stencil make_stencil(std::span<const double> phi_o_rad, const SampleGrid& grid, int points) {
+Stencil make_stencil(std::span<const double> phi_o_rad, const SampleGrid& grid, int points, bool with_trig) {
   Stencil s;
   s.points = points;
   const int half = points / 2;
@@ -126,6 +127,7 @@ Stencil make_stencil(std::span<const double> phi_o_rad, const SampleGrid& grid, 
     }
     s.first.push_back(static_cast<Eigen::Index>(base));
     s.weight.push_back(w);
+    if (!with_trig) continue;
     s.sin_phi.push_back(std::sin(phi));
     s.cos_phi.push_back(std::cos(phi));
   }
@@ -185,14 +187,19 @@ FarFieldTree far_field_tree(std::span<const Vec2> vertices, std::span<const doub
   pad[0] = std::min(pad[0], half(0));
   for (std::size_t g = 0; g < grids; ++g) tree.grids.push_back(sample_grid(builder.intervals[g], pad[g]));
   if (!with_transfers) return tree;
+  std::vector<double> sin_phi, cos_phi, angle;
   for (std::size_t n = tree.chunks.size(); n < tree.nodes.size(); ++n) {
     FarFieldTree::Node& node = tree.nodes[n];
     const SampleGrid& grid = tree.grids[node.grid];
+    const std::size_t padded = (grid.samples + 3) / 4 * 4;
+    sin_phi.resize(padded), cos_phi.resize(padded), angle.assign(padded, 0.0);
+    for (std::size_t p = 0; p < grid.samples; ++p) sin_phi[p] = std::sin(grid.phi[p]), cos_phi[p] = std::cos(grid.phi[p]);
     for (auto& t : node.children) {
       const FarFieldTree::Node& child = tree.nodes[t.child];
       const int points = tree.grid_points[child.grid];
-      const Stencil s = make_stencil(grid.phi, tree.grids[child.grid], points);
+      const Stencil s = make_stencil(grid.phi, tree.grids[child.grid], points, false);
       const Vec2 d = child.centre - node.centre;
+      for (std::size_t p = 0; p < grid.samples; ++p) angle[p] = -gamma0 * (sin_phi[p] * d.x + cos_phi[p] * d.z);
       t.first.resize(grid.samples);
       t.weight.resize(grid.samples * static_cast<std::size_t>(points));
       t.phase.resize(2 * grid.samples);
@@ -203,9 +210,14 @@ FarFieldTree far_field_tree(std::span<const Vec2> vertices, std::span<const doub
         for (int a = 0; a < points; ++a)
           t.weight[p * static_cast<std::size_t>(points) + static_cast<std::size_t>(a)] =
               static_cast<float>(s.weight[p][static_cast<std::size_t>(a)]);
-        const double angle = -gamma0 * (s.sin_phi[p] * d.x + s.cos_phi[p] * d.z);
-        t.phase[2 * p] = static_cast<float>(std::cos(angle));
-        t.phase[2 * p + 1] = static_cast<float>(std::sin(angle));
+      }
+      for (std::size_t p = 0; p < grid.samples; p += 4) {
+        simd::v4d sn, cs;
+        simd::sincos(simd::v4d{angle[p], angle[p + 1], angle[p + 2], angle[p + 3]}, sn, cs);
+        for (std::size_t l = 0; l < 4 && p + l < grid.samples; ++l) {
+          t.phase[2 * (p + l)] = static_cast<float>(cs[l]);
+          t.phase[2 * (p + l) + 1] = static_cast<float>(sn[l]);
+        }
       }
     }
   }

@@ -36,7 +36,7 @@ struct SampleGrid {
 };
 
 // N-point Lagrange stencil (N even: the target between the stencil's two middle points) of
-// each target on a grid.
+// each target on a grid; sin φ, cos φ of the targets too if `with_trig`.
 struct Stencil {
   int points = 6;
   std::vector<Eigen::Index> first;
@@ -44,7 +44,7 @@ struct Stencil {
   std::vector<double> sin_phi, cos_phi;
 };
 
-Stencil make_stencil(std::span<const double> phi_o_rad, const SampleGrid& grid, int points);
+Stencil make_stencil(std::span<const double> phi_o_rad, const SampleGrid& grid, int points, bool with_trig = true);
 
 struct FarFieldTree {
   struct Chunk {
