@@ -184,7 +184,8 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
   const double stencil = static_cast<double>(kMaxStencilPoints);
   bytes += (verts + 2.0 * chunks) * samples * 16.0;                      // outgoing phases per chunk
   bytes += node_points * 3.0 * (4.0 + 4.0 * stencil + 8.0);            // transfers (≤ 3 children)
-  bytes += (directions + 4.0 * static_cast<double>(target_sizes.size())) * (16.0 + 8.0 * stencil);  // root stencils
+  // root stencils (first, weights, sin, cos) and phases
+  bytes += (directions + 4.0 * static_cast<double>(target_sizes.size())) * (40.0 + 8.0 * stencil);
   bytes += 2.0 * samples * static_cast<double>(tree.max_count + 2) * 8.0 * 2.0;  // kernel_split, product
   bytes += static_cast<double>(tree.max_count) * 2.0 * c * 8.0;         // amplitude_split
   bytes += static_cast<double>(n_phi) * ((chunks * samples + node_points) * 4.0 + directions * 8.0) * 2.0 * outputs;
