@@ -55,6 +55,14 @@ const ParamTable<SimulateBenchParams>& simulate_bench_params() {
           .integer("stencil_points", [](SimulateBenchParams& o) -> int& { return o.chunking.stencil_points; }, "1",
                    detail::ChunkingOptions{}.stencil_points,
                    Limits::closed(4, detail::kMaxStencilPoints), "chunked far field: Lagrange points (even)")
+          .number("merge_oversampling",
+                  [](SimulateBenchParams& o) -> double& { return o.chunking.merge_oversampling; }, "1",
+                  detail::ChunkingOptions{}.merge_oversampling, Limits::closed(1.2, 8.0),
+                  "chunked far field: samples per band limit of the merge tree's nodes (radiation_tree.hpp)")
+          .integer("merge_stencil_points",
+                   [](SimulateBenchParams& o) -> int& { return o.chunking.merge_stencil_points; }, "1",
+                   detail::ChunkingOptions{}.merge_stencil_points, Limits::closed(4, detail::kMaxStencilPoints),
+                   "chunked far field: Lagrange points reading the tree's grids (even)")
           .number("chunk_phase", [](SimulateBenchParams& o) -> double& { return o.chunking.chunk_phase; }, "1",
                   detail::ChunkingOptions{}.chunk_phase,
                   Limits::positive(), "chunked far field: target gamma0 R_c of a chunk")

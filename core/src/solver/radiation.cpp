@@ -6,6 +6,7 @@
 #include "plumage/conventions.hpp"
 #include "plumage/error.hpp"
 #include "plumage/simd_math.hpp"
+#include "radiation_tree.hpp"
 #include "tent_kernel.hpp"
 
 namespace plumage::detail {
@@ -60,104 +61,12 @@ void radiate_exact(std::span<const Vec2> vertices, std::span<const double> segme
   }
 }
 
-// N-point Lagrange stencil on the uniform grid φ_p = lo + p·step (N even: the target between
-// the stencil's two middle points).
-struct Stencil {
-  int points = 6;
-  std::vector<Eigen::Index> first;
-  std::vector<std::array<double, kMaxStencilPoints>> weight;
-  std::vector<double> sin_phi, cos_phi;
-};
-
-Stencil make_stencil(std::span<const double> phi_o_rad, double lo, double step, int points) {
-  Stencil s;
-  s.points = points;
-  const int half = points / 2;
-  for (const double phi : phi_o_rad) {
-    const double t = (phi - lo) / step;
-    const double base = std::floor(t) - (half - 1);
-    const double f = t - base;  // in [half − 1, half): position among nodes 0 … points − 1
-    std::array<double, kMaxStencilPoints> w{};
-    for (int a = 0; a < points; ++a) {
-      double num = 1.0, den = 1.0;
-      for (int b = 0; b < points; ++b) {
-        if (b == a) continue;
-        num *= f - b;
-        den *= a - b;
-      }
-      w[a] = num / den;
-    }
-    s.first.push_back(static_cast<Eigen::Index>(base));
-    s.weight.push_back(w);
-    s.sin_phi.push_back(std::sin(phi));
-    s.cos_phi.push_back(std::cos(phi));
-  }
-  return s;
-}
-
-// Chunks of the polyline: node ranges and their centres; the sampling grid over (−π/2, π/2).
-struct ChunkLayout {
-  struct Chunk {
-    std::size_t first, count;
-    Vec2 centre;
-  };
-  std::vector<Chunk> chunks;
-  std::size_t max_count = 0, samples = 0;
-  double lo = 0.0, step = 0.0;
-  std::vector<double> grid;
-};
-
-ChunkLayout chunk_layout(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
-                         const ChunkingOptions& options) {
-  ChunkLayout layout;
-  const std::size_t nodes = vertices.size() - 2;
-  double total = 0.0;
-  for (const double h : segment_length) total += h;
-  const double mean_h = total / static_cast<double>(segment_length.size());
-  const auto per_chunk = static_cast<std::size_t>(
-      std::max(8.0, std::round(2.0 * options.chunk_phase / std::max(gamma0 * mean_h, 1e-12))));
-  // Chunk sizes as equal as possible and palindromic, so that a mirrored barbule is cut into
-  // the mirrored chunks.
-  std::size_t count = (nodes + per_chunk - 1) / per_chunk;
-  if (count % 2 == 0 && nodes % 2 == 1) ++count;
-  std::vector<std::size_t> sizes(count, nodes / count);
-  std::size_t extra = nodes % count;
-  if (extra % 2 == 1) ++sizes[count / 2], --extra;  // count is odd here
-  for (std::size_t k = 0; k < extra / 2; ++k) ++sizes[k], ++sizes[count - 1 - k];
-  double band = 0.0;
-  for (std::size_t k = 0, m0 = 0; k < count; m0 += sizes[k], ++k) {
-    ChunkLayout::Chunk c{m0, sizes[k], {}};
-    // Tent supports of nodes m0 … m0+count−1 span vertices m0 … m0+count+1.
-    double x_lo = vertices[m0].x, x_hi = x_lo, z_lo = vertices[m0].z, z_hi = z_lo;
-    for (std::size_t k = m0; k <= m0 + c.count + 1; ++k) {
-      x_lo = std::min(x_lo, vertices[k].x), x_hi = std::max(x_hi, vertices[k].x);
-      z_lo = std::min(z_lo, vertices[k].z), z_hi = std::max(z_hi, vertices[k].z);
-    }
-    c.centre = {0.5 * (x_lo + x_hi), 0.5 * (z_lo + z_hi)};
-    double radius = 0.0;
-    for (std::size_t k = m0; k <= m0 + c.count + 1; ++k) radius = std::max(radius, norm(vertices[k] - c.centre));
-    // Jacobi–Anger: |J_n(x)| for n ≥ x + 7 x^{1/3} + 8 is below ~1e-10 of the peak; the
-    // projection on ê1, ê2 adds two more orders.
-    const double x = gamma0 * radius;
-    band = std::max(band, x + 7.0 * std::cbrt(x) + 10.0);
-    layout.chunks.push_back(c);
-    layout.max_count = std::max(layout.max_count, c.count);
-  }
-  // A whole number of steps across (−π/2, π/2), so that the grid is symmetric about 0 and a
-  // mirrored barbule sees the mirrored grid; half a stencil of padding beyond each end.
-  const double intervals = std::ceil(options.oversampling * band);
-  const double pad = 0.5 * options.stencil_points;
-  layout.step = kPi / intervals;
-  layout.lo = -0.5 * kPi - pad * layout.step;
-  layout.samples = static_cast<std::size_t>(intervals) + static_cast<std::size_t>(options.stencil_points) + 1;
-  layout.grid.resize(layout.samples);
-  for (std::size_t p = 0; p < layout.samples; ++p) {
-    layout.grid[p] = layout.step * (static_cast<double>(p) - pad - 0.5 * intervals);
-  }
-  return layout;
-}
-
 }  // namespace
+
+// ê1 = (cos φ, 0, −sin φ), ê2 = (sin θ_i sin φ, cos θ_i, sin θ_i cos φ) per grid point, by component.
+struct Polarizations {
+  std::vector<double> e1x, e1z, e2x, e2y, e2z;
+};
 
 struct Radiator::Plan {
   std::span<const Vec2> vertices;
@@ -165,27 +74,26 @@ struct Radiator::Plan {
   double gamma0 = 0.0, theta_i_rad = 0.0;
   std::vector<std::span<const double>> target_phi;
   bool chunked = false;
-  ChunkLayout layout;
-  std::vector<Stencil> stencils;                      // per target set
-  std::vector<OutgoingPhases> outgoing;               // per chunk, on the sampling grid
-  std::vector<std::array<double, 3>> e1, e2;          // polarization directions at the grid points
-  // e^{−iγ0 ρ̂_j·r_c} per chunk and target set, directions padded to a multiple of 4.
-  std::vector<std::vector<std::vector<double>>> phase_re, phase_im;
-  // The same per target set, direction-major: [direction][chunk] (re, im), as the interpolation reads them.
-  std::vector<std::vector<double>> phase_by_direction;
+  FarFieldTree tree;                                  // chunks, merge tree, grids (radiation_tree.hpp)
+  std::vector<Stencil> stencils;                      // per target set, on the root's grid
+  std::vector<OutgoingPhases> outgoing;               // per chunk, on the chunks' grid
+  Polarizations polarization;                         // ê1, ê2 at the chunks' grid points
+  std::vector<float> projected;                        // one group's projected samples
+  // e^{−iγ0 ρ̂_j·r_root} per target set and direction (re, im).
+  std::vector<std::vector<double>> root_phase;
   FactoredTentKernel kernel;
   bool single_precision = false;                       // ChunkingOptions::single_precision_gemm
   Eigen::MatrixXd kernel_split, product;               // [Re K; Im K] (2P × nodes), its product
-  std::vector<Eigen::MatrixXd> amplitude_split;        // per azimuth: [Re A | Im A]
+  Eigen::MatrixXd amplitude_split;                     // one chunk's rows of one azimuth: [Re A | Im A]
   Eigen::MatrixXf kernel_split_f, product_f;           // the same in float
-  std::vector<Eigen::MatrixXf> amplitude_split_f;
-  // Per target set: every chunk's projected samples, [chunk][grid point][azimuth][output] (re, im),
-  // in float (they carry the float GEMM's rounding already); the interpolated far field,
-  // [direction][azimuth][output] (re, im), summed over the chunks in double.
-  std::vector<std::vector<float>> rows;
-  std::vector<std::vector<double>> accumulated;
+  Eigen::MatrixXf amplitude_split_f;
+  // Every chunk's projected samples, [chunk][grid point][azimuth][output] (re, im), outputs
+  // first_output … first_output + outputs − 1 of the union of the target sets, in float (they
+  // carry the float GEMM's rounding already); the internal nodes' samples, [grid point][azimuth]
+  // [output] (re, im).
+  std::vector<float> rows;
+  std::vector<std::vector<float>> node_samples;
   std::vector<float> chunk_acc;
-  std::vector<double> acc;
 };
 
 namespace {
@@ -212,58 +120,45 @@ Radiator::Radiator(std::span<const Vec2> vertices, std::span<const double> segme
   p.chunked = options.chunked && on_cone;
   p.single_precision = options.single_precision_gemm;
   if (!p.chunked) return;
-  p.layout = chunk_layout(vertices, segment_length, gamma0, options);
-  const std::size_t sets = p.target_phi.size(), chunks = p.layout.chunks.size();
+  for (const int points : {options.stencil_points, options.merge_stencil_points}) {
+    if (points < 4 || points > kMaxStencilPoints || points % 2 != 0)
+      throw Error("radiate: stencil_points must be even, in [4, " + std::to_string(kMaxStencilPoints) + "]");
+  }
+  p.tree = far_field_tree(vertices, segment_length, gamma0, options, true);
+  const std::size_t sets = p.target_phi.size(), chunks = p.tree.chunks.size();
+  const SampleGrid& leaf = p.tree.grids.front();
+  const Vec2 root = p.tree.root().centre;
   p.stencils.resize(sets);
-  if (options.stencil_points < 4 || options.stencil_points > kMaxStencilPoints || options.stencil_points % 2 != 0)
-    throw Error("radiate: stencil_points must be even, in [4, " + std::to_string(kMaxStencilPoints) + "]");
-  for (std::size_t s = 0; s < sets; ++s)
-    p.stencils[s] = make_stencil(p.target_phi[s], p.layout.lo, p.layout.step, options.stencil_points);
+  p.root_phase.resize(sets);
+  std::vector<double> angle;
+  for (std::size_t s = 0; s < sets; ++s) {
+    p.stencils[s] = make_stencil(p.target_phi[s], p.tree.grids[p.tree.root().grid], p.tree.root_points());
+    const Stencil& st = p.stencils[s];
+    const std::size_t n_dir = p.target_phi[s].size();
+    angle.assign(n_dir + 4, 0.0);
+    for (std::size_t j = 0; j < n_dir; ++j) angle[j] = -gamma0 * (st.sin_phi[j] * root.x + st.cos_phi[j] * root.z);
+    p.root_phase[s].resize(2 * (n_dir + 4));
+    for (std::size_t j = 0; j < n_dir; j += 4) {
+      simd::v4d sn, cs;
+      simd::sincos(simd::v4d{angle[j], angle[j + 1], angle[j + 2], angle[j + 3]}, sn, cs);
+      for (std::size_t l = 0; l < 4; ++l) {
+        p.root_phase[s][2 * (j + l)] = cs[l];
+        p.root_phase[s][2 * (j + l) + 1] = sn[l];
+      }
+    }
+  }
   const double st = std::sin(theta_i_rad), ct = std::cos(theta_i_rad);
-  p.e1.clear(), p.e2.clear();
-  for (const double phi : p.layout.grid) {
+  Polarizations& pol = p.polarization;
+  for (auto* v : {&pol.e1x, &pol.e1z, &pol.e2x, &pol.e2y, &pol.e2z}) v->clear();
+  for (const double phi : leaf.phi) {
     const double sp = std::sin(phi), cp = std::cos(phi);
-    p.e1.push_back({cp, 0.0, -sp});
-    p.e2.push_back({st * sp, ct, st * cp});
+    pol.e1x.push_back(cp), pol.e1z.push_back(-sp);
+    pol.e2x.push_back(st * sp), pol.e2y.push_back(ct), pol.e2z.push_back(st * cp);
   }
   p.outgoing.resize(chunks);
-  p.phase_re.resize(chunks);
-  p.phase_im.resize(chunks);
-  std::vector<double> angle;
   for (std::size_t ci = 0; ci < chunks; ++ci) {
-    const auto& c = p.layout.chunks[ci];
-    p.outgoing[ci].build(vertices.subspan(c.first, c.count + 2), c.centre, gamma0, p.layout.grid);
-    p.phase_re[ci].resize(sets);
-    p.phase_im[ci].resize(sets);
-    for (std::size_t s = 0; s < sets; ++s) {
-      const Stencil& st = p.stencils[s];
-      const std::size_t n_dir = p.target_phi[s].size();
-      std::vector<double>& pr = p.phase_re[ci][s];
-      std::vector<double>& pi = p.phase_im[ci][s];
-      angle.assign(n_dir + 4, 0.0);
-      pr.resize(n_dir + 4);
-      pi.resize(n_dir + 4);
-      for (std::size_t j = 0; j < n_dir; ++j) {
-        angle[j] = -gamma0 * (st.sin_phi[j] * c.centre.x + st.cos_phi[j] * c.centre.z);
-      }
-      for (std::size_t j = 0; j < n_dir; j += 4) {
-        simd::v4d sn, cs;
-        simd::sincos(simd::v4d{angle[j], angle[j + 1], angle[j + 2], angle[j + 3]}, sn, cs);
-        for (int l = 0; l < 4; ++l) pr[j + l] = cs[l], pi[j + l] = sn[l];
-      }
-    }
-  }
-  p.phase_by_direction.resize(sets);
-  for (std::size_t s = 0; s < sets; ++s) {
-    const std::size_t n_dir = p.target_phi[s].size();
-    std::vector<double>& by = p.phase_by_direction[s];
-    by.resize(n_dir * chunks * 2);
-    for (std::size_t j = 0; j < n_dir; ++j) {
-      for (std::size_t ci = 0; ci < chunks; ++ci) {
-        by[2 * (j * chunks + ci)] = p.phase_re[ci][s][j];
-        by[2 * (j * chunks + ci) + 1] = p.phase_im[ci][s][j];
-      }
-    }
+    const auto& c = p.tree.chunks[ci];
+    p.outgoing[ci].build(vertices.subspan(c.first, c.count + 2), c.centre, gamma0, leaf.phi);
   }
 }
 
@@ -280,121 +175,129 @@ double Radiator::estimate_bytes(std::span<const Vec2> vertices, std::span<const 
     const double block = static_cast<double>(kDirectionBlock);
     return bytes + verts * block * 16.0 * 2.0 + block * c * 16.0 * 2.0 + verts * 8.0 * 12.0;
   }
-  const ChunkLayout layout = chunk_layout(vertices, segment_length, gamma0, options);
-  const double samples = static_cast<double>(layout.samples), chunks = static_cast<double>(layout.chunks.size());
+  const FarFieldTree tree = far_field_tree(vertices, segment_length, gamma0, options, false);
+  const double samples = static_cast<double>(tree.grids.front().samples);
+  const double chunks = static_cast<double>(tree.chunks.size());
+  double node_points = 0.0;  // grid points of the internal nodes (their samples, transfers)
+  for (std::size_t n = tree.chunks.size(); n < tree.nodes.size(); ++n)
+    node_points += static_cast<double>(tree.grids[tree.nodes[n].grid].samples);
+  const double stencil = static_cast<double>(kMaxStencilPoints);
   bytes += (verts + 2.0 * chunks) * samples * 16.0;                      // outgoing phases per chunk
-  bytes += chunks * (directions + 4.0 * static_cast<double>(target_sizes.size())) * 16.0;  // chunk phases
-  bytes += 2.0 * samples * static_cast<double>(layout.max_count + 2) * 8.0 * 2.0;  // kernel_split, product
-  bytes += static_cast<double>(n_phi) * (verts - 2.0) * 2.0 * c * 8.0;  // amplitude_split
-  bytes += static_cast<double>(n_phi) * (chunks * samples * 4.0 + directions * 8.0) * 2.0 * outputs;  // rows, accumulated
-  bytes += static_cast<double>(layout.max_count + 2) * 8.0 * 13.0;      // the kernel's per-node buffers
+  bytes += node_points * 3.0 * (4.0 + 4.0 * stencil + 8.0);            // transfers (≤ 3 children)
+  // root stencils (first, weights, sin, cos) and phases
+  bytes += (directions + 4.0 * static_cast<double>(target_sizes.size())) * (40.0 + 8.0 * stencil);
+  bytes += 2.0 * samples * static_cast<double>(tree.max_count + 2) * 8.0 * 2.0;  // kernel_split, product
+  bytes += static_cast<double>(tree.max_count) * 2.0 * c * 8.0;         // amplitude_split
+  bytes += static_cast<double>(n_phi) * ((chunks * samples + node_points) * 4.0 + directions * 8.0) * 2.0 * outputs;
+  bytes += static_cast<double>(tree.max_count + 2) * 8.0 * 13.0;      // the kernel's per-node buffers
   return bytes;
 }
 
 namespace {
 // Project the six sums of each group on ê1, ê2 (radiation.hpp) at every grid point of a chunk's
-// product [Re K; Im K]·[Re A | Im A] (azimuth a), into the rows of each target set that wants
-// those outputs. The sums are formed in double whatever the product's precision.
+// product [Re K; Im K]·[Re A | Im A] (azimuth a), into the chunk's rows (outputs q_lo …
+// q_lo + outputs − 1). The sums are formed in double whatever the product's precision; one
+// group at a time over all grid points (contiguous columns: vector loops), then scattered into
+// the rows' [grid point][azimuth][output] layout.
 template <class Matrix>
-void project_samples(const Matrix& product, const std::vector<std::array<double, 3>>& e1s,
-                     const std::vector<std::array<double, 3>>& e2s, int groups, std::size_t a, std::size_t n_phi,
-                     std::size_t chunk, std::span<const RadiationTargets> layout, std::vector<std::vector<float>>& rows) {
+void project_samples(const Matrix& product, const Polarizations& pol, int q_lo, int outputs, std::size_t a,
+                     std::size_t n_phi, float* __restrict rows, std::vector<float>& scratch) {
+  using T = typename Matrix::Scalar;
   const Eigen::Index P = product.rows() / 2, columns = product.cols() / 2;
-  const std::size_t sets = layout.size();
-  for (Eigen::Index j = 0; j < P; ++j) {
-    const auto& e1 = e1s[static_cast<std::size_t>(j)];
-    const auto& e2 = e2s[static_cast<std::size_t>(j)];
-    auto sum = [&](Eigen::Index col) {
-      const double rr = product(j, col), ii = product(P + j, columns + col);
-      const double ri = product(j, columns + col), ir = product(P + j, col);
-      return Complex(rr - ii, ri + ir);
-    };
-    for (int g = 0; g < groups; ++g) {
-      const Eigen::Index b = 6 * g;
-      const Complex s0 = sum(b), s1 = sum(b + 1), s2 = sum(b + 2), s3 = sum(b + 3), s4 = sum(b + 4), s5 = sum(b + 5);
-      const Complex e1j = e1[0] * s0 + e1[2] * s2;
-      const Complex e2j = e2[0] * s0 + e2[1] * s1 + e2[2] * s2;
-      const Complex e1m = e1[0] * s3 + e1[2] * s5;
-      const Complex e2m = e2[0] * s3 + e2[1] * s4 + e2[2] * s5;
-      const Complex o[2] = {-e1j - e2m, -e2j + e1m};
-      for (int h = 0; h < 2; ++h) {
-        const int q = 2 * g + h;
-        for (std::size_t s = 0; s < sets; ++s) {
-          const int k = q - layout[s].first_output;
-          if (k < 0 || k >= layout[s].outputs) continue;
-          const std::size_t outputs = static_cast<std::size_t>(layout[s].outputs);
-          const std::size_t at =
-              2 * (((chunk * static_cast<std::size_t>(P) + static_cast<std::size_t>(j)) * n_phi + a) * outputs +
-                   static_cast<std::size_t>(k));
-          rows[s][at] = static_cast<float>(o[h].real());
-          rows[s][at + 1] = static_cast<float>(o[h].imag());
-        }
-      }
+  const auto n = static_cast<std::size_t>(P);
+  const int g_lo = q_lo / 2, g_hi = (q_lo + outputs + 1) / 2;
+  const auto width = static_cast<std::size_t>(outputs) * 2;
+  scratch.resize(4 * n);
+  const double* __restrict e1x = pol.e1x.data();
+  const double* __restrict e1z = pol.e1z.data();
+  const double* __restrict e2x = pol.e2x.data();
+  const double* __restrict e2y = pol.e2y.data();
+  const double* __restrict e2z = pol.e2z.data();
+  for (int g = g_lo; g < g_hi; ++g) {
+    const Eigen::Index b = 6 * g;
+    // Column c of Re K·Re A, Re K·Im A, Im K·Re A, Im K·Im A.
+    auto rr = [&](int c) { return product.data() + (b + c) * 2 * P; };
+    auto ri = [&](int c) { return product.data() + (columns + b + c) * 2 * P; };
+    auto ir = [&](int c) { return product.data() + (b + c) * 2 * P + P; };
+    auto ii = [&](int c) { return product.data() + (columns + b + c) * 2 * P + P; };
+    const T *__restrict rr0 = rr(0), *__restrict rr1 = rr(1), *__restrict rr2 = rr(2), *__restrict rr3 = rr(3),
+            *__restrict rr4 = rr(4), *__restrict rr5 = rr(5);
+    const T *__restrict ri0 = ri(0), *__restrict ri1 = ri(1), *__restrict ri2 = ri(2), *__restrict ri3 = ri(3),
+            *__restrict ri4 = ri(4), *__restrict ri5 = ri(5);
+    const T *__restrict ir0 = ir(0), *__restrict ir1 = ir(1), *__restrict ir2 = ir(2), *__restrict ir3 = ir(3),
+            *__restrict ir4 = ir(4), *__restrict ir5 = ir(5);
+    const T *__restrict ii0 = ii(0), *__restrict ii1 = ii(1), *__restrict ii2 = ii(2), *__restrict ii3 = ii(3),
+            *__restrict ii4 = ii(4), *__restrict ii5 = ii(5);
+    float* __restrict o = scratch.data();
+    for (std::size_t j = 0; j < n; ++j) {
+      // s_c = Σ K·A (complex) for the six columns: (rr − ii) + i (ri + ir)
+      const double s0r = double(rr0[j]) - double(ii0[j]), s0i = double(ri0[j]) + double(ir0[j]);
+      const double s1r = double(rr1[j]) - double(ii1[j]), s1i = double(ri1[j]) + double(ir1[j]);
+      const double s2r = double(rr2[j]) - double(ii2[j]), s2i = double(ri2[j]) + double(ir2[j]);
+      const double s3r = double(rr3[j]) - double(ii3[j]), s3i = double(ri3[j]) + double(ir3[j]);
+      const double s4r = double(rr4[j]) - double(ii4[j]), s4i = double(ri4[j]) + double(ir4[j]);
+      const double s5r = double(rr5[j]) - double(ii5[j]), s5i = double(ri5[j]) + double(ir5[j]);
+      // o1 = −ê1·S_J − ê2·S_M, o2 = −ê2·S_J + ê1·S_M (ê1 has no y component)
+      const double e1jr = e1x[j] * s0r + e1z[j] * s2r, e1ji = e1x[j] * s0i + e1z[j] * s2i;
+      const double e2jr = e2x[j] * s0r + e2y[j] * s1r + e2z[j] * s2r, e2ji = e2x[j] * s0i + e2y[j] * s1i + e2z[j] * s2i;
+      const double e1mr = e1x[j] * s3r + e1z[j] * s5r, e1mi = e1x[j] * s3i + e1z[j] * s5i;
+      const double e2mr = e2x[j] * s3r + e2y[j] * s4r + e2z[j] * s5r, e2mi = e2x[j] * s3i + e2y[j] * s4i + e2z[j] * s5i;
+      o[4 * j] = static_cast<float>(-e1jr - e2mr);
+      o[4 * j + 1] = static_cast<float>(-e1ji - e2mi);
+      o[4 * j + 2] = static_cast<float>(-e2jr + e1mr);
+      o[4 * j + 3] = static_cast<float>(-e2ji + e1mi);
     }
+    const int k_first = std::max(2 * g, q_lo), k_end = std::min(2 * g + 2, q_lo + outputs);
+    if (k_end <= k_first) continue;
+    const auto copy = static_cast<std::size_t>(2 * (k_end - k_first));
+    const float* from = o + 2 * (k_first - 2 * g);
+    float* to = rows + a * width + static_cast<std::size_t>(2 * (k_first - q_lo));
+    for (std::size_t j = 0; j < n; ++j) std::copy(from + 4 * j, from + 4 * j + copy, to + j * n_phi * width);
   }
 }
 
-// W > 0: the width known at compile time (one azimuth: 8 floats per grid point), so that the
-// short loops are single vector operations.
-template <std::size_t W>
-void interpolate_chunks_impl(Radiator::Plan& p, std::size_t s, std::size_t runtime_width) {
-  const std::size_t width = W > 0 ? W : runtime_width;
+// The root's samples of outputs [offset/2, offset/2 + O2/2) (O2 floats per azimuth, `stride`
+// floats per grid point) interpolated to target set s and multiplied by e^{−iγ0 ρ̂_j·r_root}
+// (in double), one direction at a time, into results[a · sets + s]. O2 > 0: known at compile
+// time (four outputs: 8).
+template <std::size_t O2>
+void interpolate_root_impl(Radiator::Plan& p, std::size_t s, const float* root, std::size_t stride, std::size_t offset,
+                           std::size_t runtime_o2, std::span<Eigen::MatrixXcd> results, std::size_t sets) {
+  const std::size_t n_phi = results.size() / sets;
+  const std::size_t o2 = O2 > 0 ? O2 : runtime_o2, width = n_phi * o2, per_azimuth = stride / n_phi;
   const Stencil& st = p.stencils[s];
-  const std::size_t n_dir = p.target_phi[s].size(), chunks = p.layout.chunks.size(), samples = p.layout.samples;
   p.chunk_acc.resize(width);
-  p.acc.resize(width);
   float* __restrict tmp = p.chunk_acc.data();
-  double* __restrict acc = p.acc.data();
-  const float* rows = p.rows[s].data();
+  const std::size_t n_dir = p.target_phi[s].size();
+  for (std::size_t a = 0; a < n_phi; ++a) {
+    results[a * sets + s].resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(o2 / 2));
+  }
   for (std::size_t j = 0; j < n_dir; ++j) {
     const auto& w = st.weight[j];
-    const double* phase = p.phase_by_direction[s].data() + 2 * j * chunks;
-    for (std::size_t k = 0; k < width; ++k) acc[k] = 0.0;
-    for (std::size_t ci = 0; ci < chunks; ++ci) {
-      const float* __restrict y = rows + (ci * samples + static_cast<std::size_t>(st.first[j])) * width;
-      for (std::size_t k = 0; k < width; ++k) tmp[k] = 0.0f;
-      for (int a = 0; a < st.points; ++a) {
-        const float* __restrict ya = y + static_cast<std::size_t>(a) * width;
-        const auto wa = static_cast<float>(w[a]);
-        for (std::size_t k = 0; k < width; ++k) tmp[k] += wa * ya[k];
-      }
-      const double pr = phase[2 * ci], pi = phase[2 * ci + 1];
-      for (std::size_t k = 0; k < width; k += 2) {
-        const double re = tmp[k], im = tmp[k + 1];
-        acc[k] += pr * re - pi * im;
-        acc[k + 1] += pr * im + pi * re;
+    for (std::size_t k = 0; k < width; ++k) tmp[k] = 0.0f;
+    for (int pt = 0; pt < st.points; ++pt) {
+      const auto point = static_cast<std::size_t>(st.first[j]) + static_cast<std::size_t>(pt);
+      const float* __restrict y = root + point * stride + offset;
+      const auto wa = static_cast<float>(w[static_cast<std::size_t>(pt)]);
+      for (std::size_t a = 0; a < n_phi; ++a) {
+        for (std::size_t k = 0; k < o2; ++k) tmp[a * o2 + k] += wa * y[a * per_azimuth + k];
       }
     }
-    std::copy(acc, acc + width, p.accumulated[s].data() + j * width);
-  }
-}
-
-// Every chunk's samples of target set s interpolated to the set's directions (the stencils are
-// the same for all chunks: one grid) and summed with the chunks' phases e^{−iγ0 ρ̂_j·r_c}, one
-// direction at a time (its sum stays in cache; `accumulated` is written once). `width` floats per
-// grid point: [azimuth][output] (re, im).
-void interpolate_chunks(Radiator::Plan& p, std::size_t s, std::size_t width) {
-  if (width == 8) return interpolate_chunks_impl<8>(p, s, width);
-  interpolate_chunks_impl<0>(p, s, width);
-}
-
-// accumulated[s] ([direction][azimuth][output] (re, im)) → results[a · sets + s].
-void copy_results(const std::vector<std::vector<double>>& accumulated, std::span<const RadiationTargets> layout,
-                  std::size_t n_phi, std::vector<Eigen::MatrixXcd>& results) {
-  const std::size_t sets = layout.size();
-  for (std::size_t a = 0; a < n_phi; ++a) {
-    for (std::size_t s = 0; s < sets; ++s) {
-      const std::size_t n_dir = layout[s].phi_o_rad.size(), outputs = static_cast<std::size_t>(layout[s].outputs);
+    const double pr = p.root_phase[s][2 * j], pi = p.root_phase[s][2 * j + 1];
+    for (std::size_t a = 0; a < n_phi; ++a) {
       Eigen::MatrixXcd& r = results[a * sets + s];
-      r.resize(static_cast<Eigen::Index>(n_dir), static_cast<Eigen::Index>(outputs));
-      for (std::size_t j = 0; j < n_dir; ++j) {
-        const double* v = accumulated[s].data() + 2 * ((j * n_phi + a) * outputs);
-        for (std::size_t q = 0; q < outputs; ++q) {
-          r(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(q)) = Complex(v[2 * q], v[2 * q + 1]);
-        }
+      for (std::size_t q = 0; q < o2 / 2; ++q) {
+        const double re = tmp[a * o2 + 2 * q], im = tmp[a * o2 + 2 * q + 1];
+        r(static_cast<Eigen::Index>(j), static_cast<Eigen::Index>(q)) = Complex(pr * re - pi * im, pr * im + pi * re);
       }
     }
   }
+}
+
+void interpolate_root(Radiator::Plan& p, std::size_t s, const float* root, std::size_t stride, std::size_t offset,
+                      std::size_t o2, std::span<Eigen::MatrixXcd> results, std::size_t sets) {
+  if (o2 == 8) return interpolate_root_impl<8>(p, s, root, stride, offset, o2, results, sets);
+  interpolate_root_impl<0>(p, s, root, stride, offset, o2, results, sets);
 }
 }  // namespace
 
@@ -427,52 +330,54 @@ void Radiator::radiate_all(std::span<const std::vector<double>> chi, std::span<c
     return;
   }
   const auto columns = amplitudes.front().cols();
-  const int groups = static_cast<int>(columns / 6);
-  const std::size_t samples = p.layout.samples;
-  p.amplitude_split.resize(n_phi);
-  p.amplitude_split_f.resize(n_phi);
+  const std::size_t samples = p.tree.grids.front().samples, chunks = p.tree.chunks.size();
   for (std::size_t a = 0; a < n_phi; ++a) {
     if (amplitudes[a].cols() != columns) throw Error("radiate: azimuths differ in current columns");
-    if (p.single_precision) {
-      p.amplitude_split_f[a].resize(amplitudes[a].rows(), 2 * columns);
-      p.amplitude_split_f[a].leftCols(columns) = amplitudes[a].real().cast<float>();
-      p.amplitude_split_f[a].rightCols(columns) = amplitudes[a].imag().cast<float>();
-    } else {
-      p.amplitude_split[a].resize(amplitudes[a].rows(), 2 * columns);
-      p.amplitude_split[a].leftCols(columns) = amplitudes[a].real();
-      p.amplitude_split[a].rightCols(columns) = amplitudes[a].imag();
-    }
   }
-  p.rows.resize(sets);
-  p.accumulated.resize(sets);
-  for (std::size_t s = 0; s < sets; ++s) {
-    // Every entry of rows is written before it is read, every entry of accumulated once: no clearing.
-    const std::size_t width = n_phi * 2 * static_cast<std::size_t>(layout[s].outputs);
-    p.rows[s].resize(p.layout.chunks.size() * samples * width);
-    p.accumulated[s].resize(layout[s].phi_o_rad.size() * width);
+  // The outputs any target set wants, merged up the tree together.
+  int q_lo = layout.front().first_output, q_hi = q_lo;
+  for (const RadiationTargets& t : layout) {
+    q_lo = std::min(q_lo, t.first_output);
+    q_hi = std::max(q_hi, t.first_output + t.outputs);
   }
-  for (std::size_t ci = 0; ci < p.layout.chunks.size(); ++ci) {
-    const auto& c = p.layout.chunks[ci];
+  const int outputs = q_hi - q_lo;
+  const std::size_t stride = n_phi * 2 * static_cast<std::size_t>(outputs);  // floats per grid point
+  // Every entry of rows is written before it is read: no clearing.
+  p.rows.resize(chunks * samples * stride);
+  for (std::size_t ci = 0; ci < chunks; ++ci) {
+    const auto& c = p.tree.chunks[ci];
     const std::size_t v0 = c.first, nv = c.count + 2;
+    float* rows = p.rows.data() + ci * samples * stride;
     for (std::size_t a = 0; a < n_phi; ++a) {
-      // Real arithmetic: [Re K; Im K]·[Re A | Im A] holds the four real products of K·A.
+      // Real arithmetic: [Re K; Im K]·[Re A | Im A] holds the four real products of K·A. The
+      // chunk's rows are split (and rounded) here, into a buffer that stays in cache for the GEMM.
+      const auto rows_a =
+          amplitudes[a].middleRows(static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
       if (p.single_precision) {
+        p.amplitude_split_f.resize(rows_a.rows(), 2 * columns);
+        p.amplitude_split_f.leftCols(columns) = rows_a.real().cast<float>();
+        p.amplitude_split_f.rightCols(columns) = rows_a.imag().cast<float>();
         p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
                        std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split_f);
-        p.product_f.noalias() = p.kernel_split_f * p.amplitude_split_f[a].middleRows(
-                                                       static_cast<Eigen::Index>(c.first), static_cast<Eigen::Index>(c.count));
-        project_samples(p.product_f, p.e1, p.e2, groups, a, n_phi, ci, layout, p.rows);
+        p.product_f.noalias() = p.kernel_split_f * p.amplitude_split_f;
+        project_samples(p.product_f, p.polarization, q_lo, outputs, a, n_phi, rows, p.projected);
       } else {
+        p.amplitude_split.resize(rows_a.rows(), 2 * columns);
+        p.amplitude_split.leftCols(columns) = rows_a.real();
+        p.amplitude_split.rightCols(columns) = rows_a.imag();
         p.kernel.build(p.outgoing[ci], p.segment_length.subspan(v0, nv - 1),
                        std::span<const double>(chi[a]).subspan(v0, nv), p.kernel_split);
-        p.product.noalias() = p.kernel_split * p.amplitude_split[a].middleRows(static_cast<Eigen::Index>(c.first),
-                                                                             static_cast<Eigen::Index>(c.count));
-        project_samples(p.product, p.e1, p.e2, groups, a, n_phi, ci, layout, p.rows);
+        p.product.noalias() = p.kernel_split * p.amplitude_split;
+        project_samples(p.product, p.polarization, q_lo, outputs, a, n_phi, rows, p.projected);
       }
     }
   }
-  for (std::size_t s = 0; s < sets; ++s) interpolate_chunks(p, s, n_phi * 2 * static_cast<std::size_t>(layout[s].outputs));
-  copy_results(p.accumulated, layout, n_phi, results);
+  aggregate(p.tree, p.rows.data(), stride, p.node_samples);
+  const float* root = chunks == 1 ? p.rows.data() : p.node_samples.back().data();
+  for (std::size_t s = 0; s < sets; ++s) {
+    interpolate_root(p, s, root, stride, 2 * static_cast<std::size_t>(layout[s].first_output - q_lo),
+                     2 * static_cast<std::size_t>(layout[s].outputs), results, sets);
+  }
 }
 
 }  // namespace plumage::detail

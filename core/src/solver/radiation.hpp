@@ -11,14 +11,21 @@
 // Two evaluations:
 //  * exact    every (node, direction) kernel entry (tent_kernel.hpp) and one GEMM; cost
 //             ∝ nodes × directions.
-//  * chunked  the polyline is cut into chunks of a few µm. Relative to its centre r_c, a chunk's
-//             far field F_c(φ) is band-limited in φ: by the Jacobi–Anger expansion it has no
-//             Fourier component e^{inφ} above |n| ≈ γ0 R_c (R_c its radius) beyond a decay
-//             margin. It is sampled exactly on a uniform grid over (−π/2, π/2) at a few times
-//             that rate (ChunkingOptions: 1.6), interpolated to the requested directions with
-//             N-point Lagrange weights (10), and multiplied back by e^{−iγ0 ρ̂·r_c}. Cost ∝ nodes × (samples per
-//             chunk) + chunks × directions, about an order of magnitude below the exact sum for
-//             a 40 µm barbule; agreement with it is measured in the tests (≤ 1e-5 relative L2).
+//  * chunked  the polyline is cut into chunks of a few µm (γ0·R_c ≈ chunk_phase, R_c a chunk's
+//             radius). Relative to its centre r_c, a chunk's far field F_c(φ) is band-limited in
+//             φ: by the Jacobi–Anger expansion it has no Fourier component e^{inφ} above
+//             |n| ≈ γ0 R_c beyond a decay margin. It is computed exactly (kernel × currents, one
+//             GEMM per chunk, projected on ê1, ê2) on a uniform grid over (−π/2, π/2) at a few
+//             times that rate (ChunkingOptions: 1.6). The chunks' fields are then merged up a
+//             tree (radiation_tree.hpp, issue 26): neighbouring chunks in twos or threes, then
+//             those nodes, up to one root over the whole polyline; a parent's samples, on its own
+//             finer grid (band limit of its radius, merge_oversampling 3.0), are its children's
+//             interpolated there (10-point Lagrange) times the shift e^{−iγ0 ρ̂·(r_c − r_P)}.
+//             Only the root is interpolated to the requested directions and multiplied by
+//             e^{−iγ0 ρ̂·r_root}. Cost ∝ nodes × (samples per chunk) for the kernels and GEMMs,
+//             (levels × samples + directions) × stencil for the interpolation (before: chunks ×
+//             directions × stencil); agreement with the exact sum is measured in the tests
+//             (≤ 1e-5 relative L2; 1.4e-6 to 1.9e-6 on the production bench units).
 #pragma once
 
 #include <Eigen/Dense>
@@ -41,11 +48,11 @@ struct RadiationTargets {
 };
 
 // The far field of many incident azimuths of one (polyline, γ0, θ_i, target azimuths): what does
-// not depend on the incident phase χ — the chunks, the sampling grid, the interpolation stencils,
-// the chunk phases e^{−iγ0 ρ̂_j·r_c} at the targets and the outgoing kernel phases
-// (OutgoingPhases) — is set up once; radiate_all() then costs one complex product per kernel entry
-// instead of a sincos. Chunked evaluation needs every target azimuth in [−π/2, π/2]; otherwise
-// the exact sum is used.
+// not depend on the incident phase χ — the chunks, the merge tree and its grids, the merge and
+// target stencils with their shift phases, the root's phases e^{−iγ0 ρ̂_j·r_root} at the targets
+// and the outgoing kernel phases (OutgoingPhases) — is set up once; radiate_all() then costs one
+// complex product per kernel entry instead of a sincos. Chunked evaluation needs every target
+// azimuth in [−π/2, π/2]; otherwise the exact sum is used.
 class Radiator {
  public:
   Radiator(std::span<const Vec2> vertices, std::span<const double> segment_length, double gamma0,
@@ -57,9 +64,9 @@ class Radiator {
 
   // Every incident azimuth a at once: chi[a], amplitudes[a] ((vertices − 2) × (6·groups));
   // layout[s].phi_o_rad must be the azimuths given to the constructor as set s (its `result`
-  // pointers unused); results[a · layout.size() + s] receives set s of azimuth a. The
-  // chunks' interpolation to the targets runs over all azimuths together (one stencil and chunk
-  // phase per direction for all of them).
+  // pointers unused); results[a · layout.size() + s] receives set s of azimuth a. The merge
+  // and the interpolation to the targets run over all azimuths (and all the sets' outputs)
+  // together: one stencil and phase per grid point or direction for all of them.
   void radiate_all(std::span<const std::vector<double>> chi, std::span<const Eigen::MatrixXcd> amplitudes,
                    std::span<const RadiationTargets> layout, std::vector<Eigen::MatrixXcd>& results);
 
