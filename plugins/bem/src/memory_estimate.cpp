@@ -1,6 +1,7 @@
 // BEM memory estimate (memory_estimate.hpp).
 #include "memory_estimate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -57,7 +58,10 @@ MemoryEstimate estimate_system_memory(const Mesh& mesh, double lambda_nm, const 
                 std::string(method_name(options.method)).c_str(), number(n).c_str(), mesh.segments.size(), lambda_nm);
   e.job = job;
   const std::string ppw = "points_per_wavelength (now " + number(options.points_per_wavelength) + ")";
-  const double krylov = 16.0 * n * (options.gmres_restart + 2.0);
+  // each of the right-hand sides solved together keeps its restart + 1 Krylov vectors and restart
+  // preconditioned ones (flexible GMRES, gmres_lockstep), plus the block's products and warm start
+  const double together = std::max(1, std::min(options.gmres_block, std::max(rhs, 1)));
+  const double krylov = 16.0 * n * together * (2.0 * options.gmres_restart + 5.0);
   if (options.method == BemOptions::Method::hmatrix) {
     const HMatrixSizes s = hmatrix_sizes(mesh, options.quadrature, options.hmatrix);
     const double entries = kEntriesPerNearPair * static_cast<double>(s.near_pairs);
