@@ -373,8 +373,8 @@ void HMatrix::apply_block(const Domain& d, const LowRank& b, const Eigen::Matrix
   //   per family F ∈ {J (0), M (1)}: 0 t_x x_t, 1 t_z x_t, 2 ŵ (w = Σ_j d_j x_t,j / h on both tents),
   //   3 x_z, 4 n_x x_t, 5 n_z x_t
   Eigen::MatrixXcd R(2 * nc, 12 * nv);
-  for (int v = 0; v < nv; ++v)
-  for (int kb = 0; kb < nc; ++kb) {
+  for (int q = 0; q < nv * nc; ++q) {
+    const int v = q / nc, kb = q % nc;
     const int s = b.c0 + kb;
     const double sg = d.sign[s];
     for (int F = 0; F < 2; ++F) {
@@ -418,8 +418,8 @@ void HMatrix::apply_block(const Domain& d, const LowRank& b, const Eigen::Matrix
   out.setZero(8 * nr, nv);
   const cplx bE = 1.0 / d.eps;  // L[1, 1/ε] on J (E rows), L[ε, 1] on M (H rows)
   const cplx aH = d.eps;
-  for (int v = 0; v < nv; ++v)
-  for (int ka = 0; ka < nr; ++ka) {
+  for (int q = 0; q < nv * nr; ++q) {
+    const int v = q / nr, ka = q % nr;
     const int ci = 12 * v, cx = 4 * v;  // this vector's columns of IR and of XR, ZR
     const int s = b.r0 + ka;
     const double sa = d.sign[s], tx = d.tx[s], tz = d.tz[s], nx = d.nx[s], nz = d.nz[s], h = d.h[s];

@@ -71,7 +71,6 @@ MemoryEstimate estimate_system_memory(const Mesh& mesh, double lambda_nm, const 
       e.add("dense single-precision LU 8 N^2", 8.0 * n * n);
       e.lower_with = {ppw, "preconditioner: near_field"};
     } else if (options.hmatrix.preconditioner == HMatrixOptions::Preconditioner::hodlr) {
-      e.add("column-major copy of the near field (while factorising)", entries * kSparseEntryBytes);
       e.add("HODLR factor (rank <= hodlr_max_rank)", hodlr_memory_bound_bytes(n, options.hodlr));
       e.lower_with = {ppw, "hodlr_max_rank (now " + number(options.hodlr.max_rank) + ")"};
     } else {
@@ -94,10 +93,12 @@ MemoryEstimate estimate_system_memory(const Mesh& mesh, double lambda_nm, const 
     e.lower_with = {ppw, "method: hmatrix (compressed matrix, no N^2 storage)"};
   }
   e.add("right-hand sides and solutions", 3.0 * 16.0 * n * rhs);
-  e.add("far-field operator", 48.0 * n * far_directions);
+  // built 32 directions at a time (bem_solver.cpp, kFarFieldChunk)
+  const double chunk = std::min(far_directions, 32);
+  e.add("far-field operator (32 directions at a time)", 48.0 * n * chunk);
   // E = F X packs blocks of F (Eigen's GEMM workspace): 21.9 MB beside F's 86.4 MB measured with
   // heaptrack on the keratin cylinder (1 264 unknowns, 1 424 directions); bounded by a third of F.
-  e.add("far-field product workspace", 16.0 * n * far_directions);
+  e.add("far-field product workspace", 16.0 * n * chunk);
   e.add("mesh and bookkeeping", 64.0 * n);
   e.lower_with.push_back("a narrower segment (outline.width_um / bench --width-um)");
   e.lower_with.push_back("fewer incident azimuths");
