@@ -249,11 +249,22 @@ void HMatrix::apply(const Eigen::VectorXcd& x, Eigen::VectorXcd& y) const {
 void HMatrix::apply(const Eigen::MatrixXcd& X, Eigen::MatrixXcd& Y) const {
   const Eigen::Index nv = X.cols();
   Y.resize(n_, nv);
-  // near field: rows in parallel (each entry one dot product: deterministic)
+  // near field: rows in parallel, each row's entries read once for all columns (Eigen's sparse × dense
+  // product reads the sparse matrix once per column: 31 % of a 4-column GMRES step, NOTES.md §5);
+  // each entry one sum in the row's order: deterministic on any thread count
+  const Eigen::MatrixXcd Xt = X.transpose();  // nv × N: the columns' values of one unknown side by side
+  const int* outer = near_.outerIndexPtr();
+  const int* inner = near_.innerIndexPtr();
+  const cplx* value = near_.valuePtr();
   constexpr int kRows = 2048;
   tbb::parallel_for(0, (n_ + kRows - 1) / kRows, [&](int b) {
-    const int r0 = b * kRows, nr = std::min(n_, r0 + kRows) - r0;
-    Y.middleRows(r0, nr) = near_.middleRows(r0, nr) * X;
+    const int r1 = std::min(n_, (b + 1) * kRows);
+    Eigen::VectorXcd acc(nv);
+    for (int r = b * kRows; r < r1; ++r) {
+      acc.setZero();
+      for (int k = outer[r]; k < outer[r + 1]; ++k) acc += value[k] * Xt.col(inner[k]);
+      Y.row(r) = acc.transpose();
+    }
   });
   // Blocks in batches: the products of a batch in parallel, summed in block order (the same bits on
   // any thread count), so that the transient products stay ~kBatch blocks whatever the width.
