@@ -329,11 +329,13 @@ std::vector<FarField> BemSolver::solve(const Prepared& prepared, double lambda_n
   const Eigen::MatrixXcd X = sys->solve(B, options_, &iterations);
   const double solve_s = seconds_since(t0);
   t0 = std::chrono::steady_clock::now();
-  // E = F X by chunks of directions: F (3 rows per direction × N) would otherwise be the largest
-  // array after the factor at the bench's 400 directions (3.8 GiB at 214 732 unknowns)
+  // Method hmatrix: E = F X by chunks of directions, since F (3 rows per direction × N) would
+  // otherwise be the largest array after the factor at the bench's 400 directions (3.8 GiB at
+  // 214 732 unknowns); the dense methods hold N² anyway and build F at once (memory_estimate.cpp).
   Eigen::MatrixXcd E(3 * phi_o.size(), nrhs);
-  for (std::size_t d0 = 0; d0 < phi_o.size(); d0 += kFarFieldChunk) {
-    const std::size_t nd = std::min(kFarFieldChunk, phi_o.size() - d0);
+  const std::size_t chunk = options_.method == BemOptions::Method::hmatrix ? kFarFieldChunk : phi_o.size();
+  for (std::size_t d0 = 0; d0 < phi_o.size(); d0 += std::max<std::size_t>(chunk, 1)) {
+    const std::size_t nd = std::min(chunk, phi_o.size() - d0);
     const Eigen::MatrixXcd F = far_field_operator(mesh, sys->k0, theta, phi_o.subspan(d0, nd));
     E.middleRows(3 * d0, 3 * nd) = F * X;
   }

@@ -93,9 +93,10 @@ MemoryEstimate estimate_system_memory(const Mesh& mesh, double lambda_nm, const 
     e.lower_with = {ppw, "method: hmatrix (compressed matrix, no N^2 storage)"};
   }
   e.add("right-hand sides and solutions", 3.0 * 16.0 * n * rhs);
-  // built 32 directions at a time (bem_solver.cpp, kFarFieldChunk)
-  const double chunk = std::min(far_directions, 32);
-  e.add("far-field operator (32 directions at a time)", 48.0 * n * chunk);
+  // method hmatrix: built 32 directions at a time (bem_solver.cpp, kFarFieldChunk)
+  const bool chunked = options.method == BemOptions::Method::hmatrix;
+  const double chunk = chunked ? std::min(far_directions, 32) : far_directions;
+  e.add(chunked ? "far-field operator (32 directions at a time)" : "far-field operator", 48.0 * n * chunk);
   // E = F X packs blocks of F (Eigen's GEMM workspace): 21.9 MB beside F's 86.4 MB measured with
   // heaptrack on the keratin cylinder (1 264 unknowns, 1 424 directions); bounded by a third of F.
   e.add("far-field product workspace", 16.0 * n * chunk);
