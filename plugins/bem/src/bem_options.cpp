@@ -90,6 +90,9 @@ ParamTable<BemOptions> make_table() {
               "times their segment length (0: off)")
       .boolean("warm_start", &BemOptions::warm_start, d.warm_start,
                "methods gmres/hmatrix: start from the residual-minimising combination of the earlier solutions")
+      .integer("gmres_block", &BemOptions::gmres_block, "1", d.gmres_block, Limits::positive(),
+               "methods gmres/hmatrix: right-hand sides whose GMRES run together (one pass over the matrices "
+               "per step for all; each keeps its own Krylov vectors)")
       .text("log_file", &BemOptions::log_file, d.log_file,
             "append one line of timings and sizes per (lambda, theta_i)")
       .custom("max_memory", "size", "-", "(the machine's)",

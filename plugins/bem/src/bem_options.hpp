@@ -46,6 +46,12 @@ struct BemOptions {
   // Right-hand sides after the first start GMRES from the residual-minimising combination of all
   // earlier solutions (method gmres/hmatrix; NOTES.md §5).
   bool warm_start = true;
+  // Right-hand sides solved together (method gmres/hmatrix): their GMRES run in lockstep, so that the
+  // operator and the preconditioner pass over their data once per step for all of them (NOTES.md §5
+  // "Right-hand sides together"); the warm start then combines the solutions of the earlier groups.
+  // Each column keeps up to 2 gmres_restart + 1 vectors (flexible GMRES): the memory estimate counts
+  // them for min(gmres_block, right-hand sides) columns.
+  int gmres_block = 8;
   // Memory budget of one solve ("8GiB"; "" = the process's: --max-memory or what the machine has,
   // plumage/memory_budget.hpp): a system whose estimated peak (memory_estimate.hpp) is larger is
   // refused before assembly.

@@ -28,6 +28,20 @@ GmresResult gmres(const Op& A, const Op& precondition, const Eigen::VectorXcd& b
                   int restart, int max_iterations,
                   const std::function<void(int, double)>& progress = {});
 
+using BlockOp = std::function<void(const Eigen::MatrixXcd& in, Eigen::MatrixXcd& out)>;
+
+// The columns of A X = B by the restarted GMRES above — each column its own Krylov space, stopping
+// test, restarts and iteration count — run in lockstep: every step applies the preconditioner and
+// then the operator once to the current vectors of all unconverged columns together (one pass over
+// the compressed matrices for all of them, NOTES.md §5 "Right-hand sides together"). X holds the
+// initial guesses on entry. Flexible GMRES (Saad 1993): the preconditioned vectors z_j = M v_j are
+// kept and x += Z y, so a preconditioner applied in single precision (hodlr, dense_single: linear
+// only to ~1e-7) does not limit the attainable residual; 2 restart + 1 vectors per column.
+// `progress(column, iterations, residual)`.
+std::vector<GmresResult> gmres_lockstep(const BlockOp& A, const BlockOp& precondition, const Eigen::MatrixXcd& B,
+                                        Eigen::MatrixXcd& X, double tol, int restart, int max_iterations,
+                                        const std::function<void(int, int, double)>& progress = {});
+
 // Near-field preconditioner: the entries of Z coupling segments closer than `factor`·max(h)
 // (the locally singular part of the operator), as a sparse matrix factorised by SparseLU.
 class NearFieldLU {

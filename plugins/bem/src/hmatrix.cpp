@@ -241,22 +241,46 @@ void HMatrix::compress_blocks(const Mesh& mesh, const std::vector<Medium>& md, c
 }
 
 void HMatrix::apply(const Eigen::VectorXcd& x, Eigen::VectorXcd& y) const {
-  y.resize(n_);
-  // near field: rows in parallel (each row one dot product: deterministic)
+  Eigen::MatrixXcd Y;
+  apply(Eigen::MatrixXcd(x), Y);
+  y = Y.col(0);
+}
+
+void HMatrix::apply(const Eigen::MatrixXcd& X, Eigen::MatrixXcd& Y) const {
+  const Eigen::Index nv = X.cols();
+  Y.resize(n_, nv);
+  // near field: rows in parallel, each row's entries read once for all columns (Eigen's sparse × dense
+  // product reads the sparse matrix once per column: 31 % of a 4-column GMRES step, NOTES.md §5);
+  // each entry one sum in the row's order: deterministic on any thread count
+  const Eigen::MatrixXcd Xt = X.transpose();  // nv × N: the columns' values of one unknown side by side
+  const int* outer = near_.outerIndexPtr();
+  const int* inner = near_.innerIndexPtr();
+  const cplx* value = near_.valuePtr();
   constexpr int kRows = 2048;
   tbb::parallel_for(0, (n_ + kRows - 1) / kRows, [&](int b) {
-    const int r0 = b * kRows, nr = std::min(n_, r0 + kRows) - r0;
-    y.segment(r0, nr) = near_.middleRows(r0, nr) * x;
+    const int r1 = std::min(n_, (b + 1) * kRows);
+    Eigen::VectorXcd acc(nv);
+    for (int r = b * kRows; r < r1; ++r) {
+      acc.setZero();
+      for (int k = outer[r]; k < outer[r + 1]; ++k) acc += value[k] * Xt.col(inner[k]);
+      Y.row(r) = acc.transpose();
+    }
   });
+  // Blocks in batches: the products of a batch in parallel, summed in block order (the same bits on
+  // any thread count), so that the transient products stay ~kBatch blocks whatever the width.
+  constexpr std::size_t kBatch = 512;
+  std::vector<Eigen::MatrixXcd> part(kBatch);
   for (const Domain& d : domains_) {
     if (d.blocks.empty()) continue;
     const std::size_t nl = d.loc2glob.size();
-    Eigen::VectorXcd xl(nl), yl = Eigen::VectorXcd::Zero(nl);
-    for (std::size_t k = 0; k < nl; ++k) xl[k] = x[d.loc2glob[k]];
-    std::vector<Eigen::VectorXcd> part(d.blocks.size());
-    tbb::parallel_for(std::size_t{0}, d.blocks.size(), [&](std::size_t k) { apply_block(d, d.blocks[k], xl, part[k]); });
-    for (std::size_t k = 0; k < d.blocks.size(); ++k) yl.segment(8 * d.blocks[k].r0, 8 * d.blocks[k].nr) += part[k];
-    for (std::size_t k = 0; k < nl; ++k) y[d.loc2glob[k]] += yl[k];
+    Eigen::MatrixXcd xl(nl, nv), yl = Eigen::MatrixXcd::Zero(nl, nv);
+    for (std::size_t k = 0; k < nl; ++k) xl.row(k) = X.row(d.loc2glob[k]);
+    for (std::size_t k0 = 0; k0 < d.blocks.size(); k0 += kBatch) {
+      const std::size_t k1 = std::min(d.blocks.size(), k0 + kBatch);
+      tbb::parallel_for(k0, k1, [&](std::size_t k) { apply_block(d, d.blocks[k], xl, part[k - k0]); });
+      for (std::size_t k = k0; k < k1; ++k) yl.middleRows(8 * d.blocks[k].r0, 8 * d.blocks[k].nr) += part[k - k0];
+    }
+    for (std::size_t k = 0; k < nl; ++k) Y.row(d.loc2glob[k]) += yl.row(k);
   }
 }
 
@@ -352,31 +376,33 @@ Eigen::MatrixXcf HMatrix::to_dense_single(const Mesh& mesh, const std::vector<Me
 // One admissible block: out (8 nr) = B x (8 nc), the algebra of local_block (assembly.cpp, §6.4)
 // applied to the compressed kernels. Local unknowns per segment: [J_t0 J_t1 J_z0 J_z1 M_t0 M_t1 M_z0
 // M_z1], rows [E_t E_z H_t H_z] likewise; d_i = ∓1 is the tent slope sign (N_i' = d_i / h).
-void HMatrix::apply_block(const Domain& d, const LowRank& b, const Eigen::VectorXcd& xl, Eigen::VectorXcd& out) const {
+void HMatrix::apply_block(const Domain& d, const LowRank& b, const Eigen::MatrixXcd& xl, Eigen::MatrixXcd& out) const {
   const cplx I1{0.0, 1.0};
   const double k0 = k0_, beta = beta_;
-  const int nc = b.nc, nr = b.nr;
-  // right-hand columns (2 nc each, tents j of segment kb), σ_B applied:
+  const int nc = b.nc, nr = b.nr, nv = static_cast<int>(xl.cols());
+  // right-hand columns (2 nc each, tents j of segment kb), σ_B applied, 12 per vector v:
   //   per family F ∈ {J (0), M (1)}: 0 t_x x_t, 1 t_z x_t, 2 ŵ (w = Σ_j d_j x_t,j / h on both tents),
   //   3 x_z, 4 n_x x_t, 5 n_z x_t
-  Eigen::MatrixXcd R(2 * nc, 12);
-  for (int kb = 0; kb < nc; ++kb) {
+  Eigen::MatrixXcd R(2 * nc, 12 * nv);
+  for (int q = 0; q < nv * nc; ++q) {
+    const int v = q / nc, kb = q % nc;
     const int s = b.c0 + kb;
     const double sg = d.sign[s];
     for (int F = 0; F < 2; ++F) {
-      const cplx xt0 = sg * xl[8 * s + 4 * F], xt1 = sg * xl[8 * s + 4 * F + 1];
-      const cplx xz0 = sg * xl[8 * s + 4 * F + 2], xz1 = sg * xl[8 * s + 4 * F + 3];
+      const cplx xt0 = sg * xl(8 * s + 4 * F, v), xt1 = sg * xl(8 * s + 4 * F + 1, v);
+      const cplx xz0 = sg * xl(8 * s + 4 * F + 2, v), xz1 = sg * xl(8 * s + 4 * F + 3, v);
       const cplx w = (xt1 - xt0) / d.h[s];
       const cplx xt[2] = {xt0, xt1}, xz[2] = {xz0, xz1};
       const double hb = d.h[s];  // kernels are stored ÷ h_A h_B
       for (int j = 0; j < 2; ++j) {
         const int row = 2 * kb + j;
-        R(row, 6 * F + 0) = hb * d.tx[s] * xt[j];
-        R(row, 6 * F + 1) = hb * d.tz[s] * xt[j];
-        R(row, 6 * F + 2) = hb * w;
-        R(row, 6 * F + 3) = hb * xz[j];
-        R(row, 6 * F + 4) = hb * d.nx[s] * xt[j];
-        R(row, 6 * F + 5) = hb * d.nz[s] * xt[j];
+        const int c = 12 * v + 6 * F;
+        R(row, c + 0) = hb * d.tx[s] * xt[j];
+        R(row, c + 1) = hb * d.tz[s] * xt[j];
+        R(row, c + 2) = hb * w;
+        R(row, c + 3) = hb * xz[j];
+        R(row, c + 4) = hb * d.nx[s] * xt[j];
+        R(row, c + 5) = hb * d.nz[s] * xt[j];
       }
     }
   }
@@ -387,50 +413,55 @@ void HMatrix::apply_block(const Domain& d, const LowRank& b, const Eigen::Vector
   };
   Eigen::MatrixXcd IR = mul(0, R);
   // X applied to [n_x x_t (J), x_z (J), n_x x_t (M), x_z (M)], Z to the n_z counterparts
-  Eigen::MatrixXcd RX(2 * nc, 4), RZ(2 * nc, 4);
-  for (int F = 0; F < 2; ++F) {
-    RX.col(2 * F) = R.col(6 * F + 4), RX.col(2 * F + 1) = R.col(6 * F + 3);
-    RZ.col(2 * F) = R.col(6 * F + 5), RZ.col(2 * F + 1) = R.col(6 * F + 3);
+  Eigen::MatrixXcd RX(2 * nc, 4 * nv), RZ(2 * nc, 4 * nv);
+  for (int v = 0; v < nv; ++v) {
+    for (int F = 0; F < 2; ++F) {
+      const int c = 12 * v + 6 * F, o = 4 * v + 2 * F;
+      RX.col(o) = R.col(c + 4), RX.col(o + 1) = R.col(c + 3);
+      RZ.col(o) = R.col(c + 5), RZ.col(o + 1) = R.col(c + 3);
+    }
   }
   Eigen::MatrixXcd XR = mul(1, RX), ZR = mul(2, RZ);
   for (int ka = 0; ka < nr; ++ka) {
     const double ha = d.h[b.r0 + ka];
     IR.middleRows(2 * ka, 2) *= ha, XR.middleRows(2 * ka, 2) *= ha, ZR.middleRows(2 * ka, 2) *= ha;
   }
-  out.setZero(8 * nr);
+  out.setZero(8 * nr, nv);
   const cplx bE = 1.0 / d.eps;  // L[1, 1/ε] on J (E rows), L[ε, 1] on M (H rows)
   const cplx aH = d.eps;
-  for (int ka = 0; ka < nr; ++ka) {
+  for (int q = 0; q < nv * nr; ++q) {
+    const int v = q / nr, ka = q % nr;
+    const int ci = 12 * v, cx = 4 * v;  // this vector's columns of IR and of XR, ZR
     const int s = b.r0 + ka;
     const double sa = d.sign[s], tx = d.tx[s], tz = d.tz[s], nx = d.nx[s], nz = d.nz[s], h = d.h[s];
     const int r0 = 2 * ka;
     // Σ over the row segment's two tents of the ŵ and x_z products (the S / col[j] terms)
-    const cplx sumW_J = IR(r0, 2) + IR(r0 + 1, 2), sumZ_J = IR(r0, 3) + IR(r0 + 1, 3);
-    const cplx sumW_M = IR(r0, 8) + IR(r0 + 1, 8), sumZ_M = IR(r0, 9) + IR(r0 + 1, 9);
+    const cplx sumW_J = IR(r0, ci + 2) + IR(r0 + 1, ci + 2), sumZ_J = IR(r0, ci + 3) + IR(r0 + 1, ci + 3);
+    const cplx sumW_M = IR(r0, ci + 8) + IR(r0 + 1, ci + 8), sumZ_M = IR(r0, ci + 9) + IR(r0 + 1, ci + 9);
     for (int i = 0; i < 2; ++i) {
       const int r = r0 + i;
       const double di = (i == 0 ? -1.0 : 1.0) / h;
       // Q x_t = X(n_x x_t) + Z(n_z x_t); P x_z = n_x X x_z + n_z Z x_z
-      const cplx Qx_J = XR(r, 0) + ZR(r, 0), Px_J = nx * XR(r, 1) + nz * ZR(r, 1);
-      const cplx Qx_M = XR(r, 2) + ZR(r, 2), Px_M = nx * XR(r, 3) + nz * ZR(r, 3);
-      const cplx tI_J = tx * IR(r, 0) + tz * IR(r, 1), tnI_J = tx * IR(r, 4) + tz * IR(r, 5);
-      const cplx tI_M = tx * IR(r, 6) + tz * IR(r, 7), tnI_M = tx * IR(r, 10) + tz * IR(r, 11);
+      const cplx Qx_J = XR(r, cx + 0) + ZR(r, cx + 0), Px_J = nx * XR(r, cx + 1) + nz * ZR(r, cx + 1);
+      const cplx Qx_M = XR(r, cx + 2) + ZR(r, cx + 2), Px_M = nx * XR(r, cx + 3) + nz * ZR(r, cx + 3);
+      const cplx tI_J = tx * IR(r, ci + 0) + tz * IR(r, ci + 1), tnI_J = tx * IR(r, ci + 4) + tz * IR(r, ci + 5);
+      const cplx tI_M = tx * IR(r, ci + 6) + tz * IR(r, ci + 7), tnI_M = tx * IR(r, ci + 10) + tz * IR(r, ci + 11);
       // E_t: L[1, 1/ε] J (tt, tz) − K M (tt, tz)
       cplx Et = I1 * k0 * tI_J - (I1 * bE / k0) * di * sumW_J + (beta * bE / k0) * di * sumZ_J;
       Et -= I1 * beta * tnI_M + Px_M;
       // E_z: L J (zt, zz) − K M (zt = −Q)
-      cplx Ez = -(beta * bE / k0) * IR(r, 2) + I1 * (k0 - bE * beta * beta / k0) * IR(r, 3);
+      cplx Ez = -(beta * bE / k0) * IR(r, ci + 2) + I1 * (k0 - bE * beta * beta / k0) * IR(r, ci + 3);
       Ez += Qx_M;
       // H_t: K J (tt, tz) + L[ε, 1] M
       cplx Ht = I1 * beta * tnI_J + Px_J;
       Ht += I1 * k0 * aH * tI_M - (I1 / k0) * di * sumW_M + (beta / k0) * di * sumZ_M;
       // H_z: K J (zt = −Q) + L M (zt, zz)
       cplx Hz = -Qx_J;
-      Hz += -(beta / k0) * IR(r, 8) + I1 * (k0 * aH - beta * beta / k0) * IR(r, 9);
-      out[8 * ka + i] = sa * Et;
-      out[8 * ka + 2 + i] = sa * Ez;
-      out[8 * ka + 4 + i] = sa * Ht;
-      out[8 * ka + 6 + i] = sa * Hz;
+      Hz += -(beta / k0) * IR(r, ci + 8) + I1 * (k0 * aH - beta * beta / k0) * IR(r, ci + 9);
+      out(8 * ka + i, v) = sa * Et;
+      out(8 * ka + 2 + i, v) = sa * Ez;
+      out(8 * ka + 4 + i, v) = sa * Ht;
+      out(8 * ka + 6 + i, v) = sa * Hz;
     }
   }
 }

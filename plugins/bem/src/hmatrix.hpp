@@ -65,6 +65,9 @@ class HMatrix {
   int size() const { return n_; }
   // y = Z x
   void apply(const Eigen::VectorXcd& x, Eigen::VectorXcd& y) const;
+  // Y = Z X for every column: one pass over the near field and the compressed blocks for all of them
+  // (the right-hand sides of one (λ, θ_i) solved together, bem_solver.cpp).
+  void apply(const Eigen::MatrixXcd& X, Eigen::MatrixXcd& Y) const;
   const Eigen::SparseMatrix<std::complex<double>, Eigen::RowMajor>& near() const { return near_; }
   // The preconditioner's part of the near field (column major, for SparseLU).
   Eigen::SparseMatrix<std::complex<double>> take_preconditioner_matrix() { return std::move(pre_); }
@@ -95,7 +98,7 @@ class HMatrix {
   void compress_blocks(const Mesh& mesh, const std::vector<Medium>& media, const QuadratureOptions& q,
                        const HMatrixOptions& options, const std::vector<ClusterTree>& trees,
                        const std::vector<BlockPartition>& parts);
-  void apply_block(const Domain& d, const LowRank& b, const Eigen::VectorXcd& xl, Eigen::VectorXcd& out) const;
+  void apply_block(const Domain& d, const LowRank& b, const Eigen::MatrixXcd& xl, Eigen::MatrixXcd& out) const;
   int n_ = 0;
   std::vector<Domain> domains_;
   Eigen::SparseMatrix<std::complex<double>, Eigen::RowMajor> near_;

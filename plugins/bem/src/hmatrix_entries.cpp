@@ -49,8 +49,6 @@ HMatrixEntries::HMatrixEntries(const HMatrix& H, const Mesh& mesh, const std::ve
       col_box_[d].push_back(box_of(b.c0, b.nc));
     }
   }
-  near_cols_ = H.near_;  // column-major copy: columns of the near field
-  near_cols_.makeCompressed();
 }
 
 double HMatrixEntries::memory_gb() const {
@@ -58,7 +56,7 @@ double HMatrixEntries::memory_gb() const {
   for (const auto& s : slots_) slots += static_cast<double>(s.size());
   for (const auto& d : row_blocks_)
     for (const auto& s : d) lists += 2.0 * static_cast<double>(s.size());
-  return (20.0 * static_cast<double>(near_cols_.nonZeros()) + 12.0 * slots + 4.0 * lists + 8.0 * perm_.size()) / 1e9;
+  return (12.0 * slots + 4.0 * lists + 8.0 * perm_.size()) / 1e9;
 }
 
 // A segment can carry an unknown of the window only if one of its end points lies in the window's box.
@@ -82,9 +80,18 @@ void HMatrixEntries::row(int p, const IndexBox& w, Eigen::VectorXcd& out) const 
 void HMatrixEntries::column(int p, const IndexBox& w, Eigen::VectorXcd& out) const {
   out = Eigen::VectorXcd::Zero(w.end - w.begin);
   const int g = perm_[p];
-  for (Eigen::SparseMatrix<std::complex<double>>::InnerIterator it(near_cols_, g); it; ++it) {
-    const int q = ipos_[it.row()];
-    if (q >= w.begin && q < w.end) out[q - w.begin] += it.value();
+  // The near field's pattern is symmetric (every segment pair is scattered both ways, build_near_field),
+  // so the rows holding column g are the columns of row g; each value Z(q, g) is found by bisection
+  // in row q (no column-major copy: it was as large as the near field, NOTES.md §5).
+  const auto& N = H_.near_;
+  const int* outer = N.outerIndexPtr();
+  const int* inner = N.innerIndexPtr();
+  for (int k = outer[g]; k < outer[g + 1]; ++k) {
+    const int qg = inner[k];
+    const int q = ipos_[qg];
+    if (q < w.begin || q >= w.end) continue;
+    const int* at = std::lower_bound(inner + outer[qg], inner + outer[qg + 1], g);
+    if (at != inner + outer[qg + 1] && *at == g) out[q - w.begin] += N.valuePtr()[at - inner];
   }
   far_part(p, w, true, out);
 }

@@ -46,7 +46,6 @@ class HMatrixEntries {
   std::vector<std::vector<std::vector<int>>> row_blocks_;  // [dom][s]: blocks whose rows hold s
   std::vector<std::vector<std::vector<int>>> col_blocks_;  // [dom][s]: blocks whose columns hold s
   std::vector<std::vector<Box>> row_box_, col_box_;       // [dom][block]: segment boxes of its rows / columns
-  Eigen::SparseMatrix<std::complex<double>> near_cols_;    // the near field, column major
 };
 
 }  // namespace plumage::bem

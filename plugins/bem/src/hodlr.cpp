@@ -27,9 +27,9 @@ int levels_for(double n, int leaf) {
 
 double hodlr_memory_bound_bytes(double n, const HodlrOptions& o) {
   const int levels = levels_for(n, o.leaf_size);
-  // leaves (dense LU), and per level V and D⁻¹U of both off-diagonal blocks (≤ max_rank × n each)
-  // plus the ACA's transient columns
-  return 16.0 * n * o.leaf_size + levels * 2.0 * 16.0 * o.max_rank * n + 2.0 * 16.0 * o.max_rank * n;
+  // leaves (dense LU) and per level V and D⁻¹U of both off-diagonal blocks (≤ max_rank × n each), in
+  // complex<float>; plus the ACA's transient double columns and their float copies
+  return 8.0 * n * o.leaf_size + levels * 2.0 * 8.0 * o.max_rank * n + 2.0 * (16.0 + 8.0) * o.max_rank * n;
 }
 
 HodlrLU::HodlrLU(const std::vector<Vec2>& points, const HodlrOptions& options) : options_(options) {
@@ -79,8 +79,8 @@ void HodlrLU::factorise(const Entries& row, const Entries& column, const std::fu
     // summed over the nodes (which run two at a time): thread seconds, not wall
     stats_.seconds_compress += nd.seconds_compress, stats_.seconds_factor += nd.seconds_factor;
     stats_.capped_blocks += nd.capped;
-    bytes += 16.0 * (nd.V[0].size() + nd.V[1].size() + nd.Y[0].size() + nd.Y[1].size());
-    bytes += 16.0 * nd.lu.matrixLU().size();
+    bytes += 8.0 * (nd.V[0].size() + nd.V[1].size() + nd.Y[0].size() + nd.Y[1].size() + nd.leaf.matrixLU().size());
+    bytes += 16.0 * nd.K.matrixLU().size();
     for (int s = 0; s < 2; ++s) {
       if (nd.child[0] < 0) continue;
       ++rank_count_;
@@ -97,44 +97,46 @@ void HodlrLU::factor_node(int k, const Entries& row, const Entries& column) {
   if (nd.child[0] < 0) {
     const auto t0 = std::chrono::steady_clock::now();
     const int n = nd.box.size();
-    Eigen::MatrixXcd A(n, n);
+    Eigen::MatrixXcf A(n, n);
     Eigen::VectorXcd r;
     for (int i = 0; i < n; ++i) {
       row(nd.box.begin + i, nd.box, r);
-      A.row(i) = r.transpose();
+      A.row(i) = r.transpose().cast<std::complex<float>>();
     }
-    nd.lu.compute(A);
+    nd.leaf.compute(A);
     nd.seconds_factor = seconds_since(t0);
     return;
   }
   const Node& a = nodes_[nd.child[0]];
   const Node& b = nodes_[nd.child[1]];
-  Eigen::MatrixXcd U[2];
   bool ok[2];
   const auto t0 = std::chrono::steady_clock::now();
-  tbb::parallel_invoke(
-      [&] { ok[0] = aca_block(row, column, a.box, b.box, options_.tolerance, options_.max_rank, U[0], nd.V[0]); },
-      [&] { ok[1] = aca_block(row, column, b.box, a.box, options_.tolerance, options_.max_rank, U[1], nd.V[1]); });
+  const auto compress = [&](int s, const IndexBox& rows, const IndexBox& cols) {
+    Eigen::MatrixXcd U, V;
+    ok[s] = aca_block(row, column, rows, cols, options_.tolerance, options_.max_rank, U, V);
+    nd.Y[s] = U.cast<std::complex<float>>();
+    nd.V[s] = V.cast<std::complex<float>>();
+  };
+  tbb::parallel_invoke([&] { compress(0, a.box, b.box); }, [&] { compress(1, b.box, a.box); });
   const auto t1 = std::chrono::steady_clock::now();
-  nd.Y[0] = std::move(U[0]);
-  nd.Y[1] = std::move(U[1]);
   tbb::parallel_invoke([&] { solve(nd.child[0], nd.Y[0]); }, [&] { solve(nd.child[1], nd.Y[1]); });
   const Eigen::Index k0 = nd.V[0].rows(), k1 = nd.V[1].rows();
   Eigen::MatrixXcd K = Eigen::MatrixXcd::Identity(k0 + k1, k0 + k1);
   if (k0 > 0 && k1 > 0) {
-    K.topRightCorner(k0, k1) = nd.V[0] * nd.Y[1];
-    K.bottomLeftCorner(k1, k0) = nd.V[1] * nd.Y[0];
+    // in float (sums over n_b terms: relative rounding ~1e-6 ≪ the blocks' 1e-4), then kept in double
+    K.topRightCorner(k0, k1) = (nd.V[0] * nd.Y[1]).cast<std::complex<double>>();
+    K.bottomLeftCorner(k1, k0) = (nd.V[1] * nd.Y[0]).cast<std::complex<double>>();
   }
-  if (k0 + k1 > 0) nd.lu.compute(K);
+  if (k0 + k1 > 0) nd.K.compute(K);
   nd.capped = (ok[0] ? 0 : 1) + (ok[1] ? 0 : 1);
   nd.seconds_compress = std::chrono::duration<double>(t1 - t0).count();
   nd.seconds_factor = seconds_since(t1);
 }
 
-void HodlrLU::solve(int k, Eigen::Ref<Eigen::MatrixXcd> B) const {
+void HodlrLU::solve(int k, Eigen::Ref<Eigen::MatrixXcf> B) const {
   const Node& nd = nodes_[k];
   if (nd.child[0] < 0) {
-    const Eigen::MatrixXcd x = nd.lu.solve(B);
+    const Eigen::MatrixXcf x = nd.leaf.solve(B);
     B = x;
     return;
   }
@@ -145,19 +147,25 @@ void HodlrLU::solve(int k, Eigen::Ref<Eigen::MatrixXcd> B) const {
   const Eigen::Index k0 = nd.V[0].rows(), k1 = nd.V[1].rows();
   if (k0 + k1 == 0) return;
   Eigen::MatrixXcd T(k0 + k1, B.cols());
-  T.topRows(k0) = nd.V[0] * Bb;  // acts on x_b
-  T.bottomRows(k1) = nd.V[1] * Ba;
-  T = nd.lu.solve(T);
-  Ba.noalias() -= nd.Y[0] * T.topRows(k0);
-  Bb.noalias() -= nd.Y[1] * T.bottomRows(k1);
+  T.topRows(k0) = (nd.V[0] * Bb).cast<std::complex<double>>();  // acts on x_b
+  T.bottomRows(k1) = (nd.V[1] * Ba).cast<std::complex<double>>();
+  const Eigen::MatrixXcf S = nd.K.solve(T).cast<std::complex<float>>();
+  Ba.noalias() -= nd.Y[0] * S.topRows(k0);
+  Bb.noalias() -= nd.Y[1] * S.bottomRows(k1);
+}
+
+void HodlrLU::apply(const Eigen::MatrixXcd& in, Eigen::MatrixXcd& out) const {
+  Eigen::MatrixXcf x(in.rows(), in.cols());
+  for (std::size_t p = 0; p < perm_.size(); ++p) x.row(static_cast<Eigen::Index>(p)) = in.row(perm_[p]).cast<std::complex<float>>();
+  solve(0, x);
+  out.resize(in.rows(), in.cols());
+  for (std::size_t p = 0; p < perm_.size(); ++p) out.row(perm_[p]) = x.row(static_cast<Eigen::Index>(p)).cast<std::complex<double>>();
 }
 
 void HodlrLU::apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const {
-  Eigen::MatrixXcd x(in.size(), 1);
-  for (std::size_t p = 0; p < perm_.size(); ++p) x(static_cast<Eigen::Index>(p), 0) = in[perm_[p]];
-  solve(0, x);
-  out.resize(in.size());
-  for (std::size_t p = 0; p < perm_.size(); ++p) out[perm_[p]] = x(static_cast<Eigen::Index>(p), 0);
+  Eigen::MatrixXcd x;
+  apply(Eigen::MatrixXcd(in), x);
+  out = x.col(0);
 }
 
 }  // namespace plumage::bem

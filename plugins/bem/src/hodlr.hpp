@@ -40,7 +40,8 @@ struct HodlrOptions {
 };
 
 // Upper bound of the factor's storage for n unknowns (before anything is allocated): leaves
-// 16 n leaf, and per level V and D⁻¹U of rank ≤ max_rank for both off-diagonal blocks.
+// 8 n leaf, and per level V and D⁻¹U of rank ≤ max_rank for both off-diagonal blocks (complex<float>),
+// plus the ACA's transient double-precision columns of the two blocks being compressed.
 double hodlr_memory_bound_bytes(double n, const HodlrOptions& options);
 
 struct HodlrStats {
@@ -60,6 +61,8 @@ class HodlrLU {
   void factorise(const Entries& row, const Entries& column, const std::function<void(int, int)>& progress = {});
   // out = A⁻¹ in (in the original index order).
   void apply(const Eigen::VectorXcd& in, Eigen::VectorXcd& out) const;
+  // OUT = A⁻¹ IN for every column: one pass over the factor for all of them.
+  void apply(const Eigen::MatrixXcd& in, Eigen::MatrixXcd& out) const;
   const HodlrStats& stats() const { return stats_; }
 
  private:
@@ -67,15 +70,16 @@ class HodlrLU {
     IndexBox box;
     int child[2] = {-1, -1};
     int level = 0;
-    Eigen::MatrixXcd V[2];  // V[0]: of Z(a, b) (rank × n_b); V[1]: of Z(b, a) (rank × n_a)
-    Eigen::MatrixXcd Y[2];  // Y[0] = A_a⁻¹ U(a, b) (n_a × rank); Y[1] = A_b⁻¹ U(b, a)
-    Eigen::PartialPivLU<Eigen::MatrixXcd> lu;  // leaf: its block; inner: K
+    Eigen::MatrixXcf V[2];  // V[0]: of Z(a, b) (rank × n_b); V[1]: of Z(b, a) (rank × n_a)
+    Eigen::MatrixXcf Y[2];  // Y[0] = A_a⁻¹ U(a, b) (n_a × rank); Y[1] = A_b⁻¹ U(b, a)
+    Eigen::PartialPivLU<Eigen::MatrixXcf> leaf;  // leaf: its block
+    Eigen::PartialPivLU<Eigen::MatrixXcd> K;     // inner: the Woodbury core
     double seconds_compress = 0, seconds_factor = 0;  // per node: nodes of a level run in parallel
     int capped = 0;
   };
   int build(std::vector<int>& idx, const std::vector<Vec2>& points, int begin, int end, int level);
   void factor_node(int k, const Entries& row, const Entries& column);
-  void solve(int k, Eigen::Ref<Eigen::MatrixXcd> B) const;  // B (rows of node k) ← A_k⁻¹ B
+  void solve(int k, Eigen::Ref<Eigen::MatrixXcf> B) const;  // B (rows of node k) ← A_k⁻¹ B
   HodlrOptions options_;
   std::vector<int> perm_;
   std::vector<Node> nodes_;

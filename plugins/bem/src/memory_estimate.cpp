@@ -1,6 +1,7 @@
 // BEM memory estimate (memory_estimate.hpp).
 #include "memory_estimate.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -57,7 +58,10 @@ MemoryEstimate estimate_system_memory(const Mesh& mesh, double lambda_nm, const 
                 std::string(method_name(options.method)).c_str(), number(n).c_str(), mesh.segments.size(), lambda_nm);
   e.job = job;
   const std::string ppw = "points_per_wavelength (now " + number(options.points_per_wavelength) + ")";
-  const double krylov = 16.0 * n * (options.gmres_restart + 2.0);
+  // each of the right-hand sides solved together keeps its restart + 1 Krylov vectors and restart
+  // preconditioned ones (flexible GMRES, gmres_lockstep), plus the block's products and warm start
+  const double together = std::max(1, std::min(options.gmres_block, std::max(rhs, 1)));
+  const double krylov = 16.0 * n * together * (2.0 * options.gmres_restart + 5.0);
   if (options.method == BemOptions::Method::hmatrix) {
     const HMatrixSizes s = hmatrix_sizes(mesh, options.quadrature, options.hmatrix);
     const double entries = kEntriesPerNearPair * static_cast<double>(s.near_pairs);
@@ -67,7 +71,6 @@ MemoryEstimate estimate_system_memory(const Mesh& mesh, double lambda_nm, const 
       e.add("dense single-precision LU 8 N^2", 8.0 * n * n);
       e.lower_with = {ppw, "preconditioner: near_field"};
     } else if (options.hmatrix.preconditioner == HMatrixOptions::Preconditioner::hodlr) {
-      e.add("column-major copy of the near field (while factorising)", entries * kSparseEntryBytes);
       e.add("HODLR factor (rank <= hodlr_max_rank)", hodlr_memory_bound_bytes(n, options.hodlr));
       e.lower_with = {ppw, "hodlr_max_rank (now " + number(options.hodlr.max_rank) + ")"};
     } else {
@@ -90,10 +93,13 @@ MemoryEstimate estimate_system_memory(const Mesh& mesh, double lambda_nm, const 
     e.lower_with = {ppw, "method: hmatrix (compressed matrix, no N^2 storage)"};
   }
   e.add("right-hand sides and solutions", 3.0 * 16.0 * n * rhs);
-  e.add("far-field operator", 48.0 * n * far_directions);
+  // method hmatrix: built 32 directions at a time (bem_solver.cpp, kFarFieldChunk)
+  const bool chunked = options.method == BemOptions::Method::hmatrix;
+  const double chunk = chunked ? std::min(far_directions, 32) : far_directions;
+  e.add(chunked ? "far-field operator (32 directions at a time)" : "far-field operator", 48.0 * n * chunk);
   // E = F X packs blocks of F (Eigen's GEMM workspace): 21.9 MB beside F's 86.4 MB measured with
   // heaptrack on the keratin cylinder (1 264 unknowns, 1 424 directions); bounded by a third of F.
-  e.add("far-field product workspace", 16.0 * n * far_directions);
+  e.add("far-field product workspace", 16.0 * n * chunk);
   e.add("mesh and bookkeeping", 64.0 * n);
   e.lower_with.push_back("a narrower segment (outline.width_um / bench --width-um)");
   e.lower_with.push_back("fewer incident azimuths");

@@ -2,7 +2,7 @@
 // test; NOTES.md §5 "Preconditioner hodlr"). Usage:
 //   bem_probe_hodlr <species.yaml> <width_um> <lambda_nm> <ppw> <near_field|hodlr> [nrhs] [dense 0/1]
 // env: GMAX (GMRES iterations per right-hand side, 1500), HTOL (hodlr_tolerance), HLEAF (hodlr_leaf_size), HRANK (hodlr_max_rank), GTOL (GMRES, 1e-6),
-// THETA (rad), LEAF (H-matrix leaf_size). Prints setup and solve times (wall and process CPU),
+// THETA (rad), LEAF (H-matrix leaf_size), GBLOCK (gmres_block: right-hand sides solved together). Prints setup and solve times (wall and process CPU),
 // iterations per right-hand side, peak RSS, and with dense = 1 the far-field intensity against dense LU.
 #include <sys/resource.h>
 
@@ -66,6 +66,7 @@ int main(int argc, char** argv) {
   o.hodlr.tolerance = env("HTOL", o.hodlr.tolerance);
   o.hodlr.leaf_size = static_cast<int>(env("HLEAF", o.hodlr.leaf_size));
   o.hodlr.max_rank = static_cast<int>(env("HRANK", o.hodlr.max_rank));
+  o.gmres_block = static_cast<int>(env("GBLOCK", o.gmres_block));
   const double theta = env("THETA", 0.0);
   const auto prep = prepare_geometry(cs);
   auto t0 = std::chrono::steady_clock::now();
@@ -97,6 +98,18 @@ int main(int argc, char** argv) {
   for (int i : its) std::printf(" %d", i);
   std::printf("; RSS peak %.2f GB\n", peak_gb());
   std::fflush(stdout);
+  if (getenv("GBLOCK2")) {  // the same system again with another gmres_block: time and solution change
+    BemOptions o2 = o;
+    o2.gmres_block = static_cast<int>(env("GBLOCK2", 1));
+    std::vector<int> its2;
+    t0 = std::chrono::steady_clock::now();
+    c0 = cpu();
+    const Eigen::MatrixXcd X2 = sys->solve(B, o2, &its2);
+    std::printf("  GMRES with gmres_block %d: %.1f s wall %.1f s CPU, iterations", o2.gmres_block, since(t0), cpu() - c0);
+    for (int i : its2) std::printf(" %d", i);
+    std::printf("; |X - X_block%d| / |X| = %.2e\n", o.gmres_block, (X2 - X).norm() / X.norm());
+    std::fflush(stdout);
+  }
   if (dense) {
     BemOptions d;
     d.points_per_wavelength = ppw;

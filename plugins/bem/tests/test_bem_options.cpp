@@ -40,7 +40,8 @@ std::vector<double> fingerprint(const BemOptions& o) {
           static_cast<double>(o.max_memory.size()),
           o.hodlr.tolerance,
           static_cast<double>(o.hodlr.leaf_size),
-          static_cast<double>(o.hodlr.max_rank)};
+          static_cast<double>(o.hodlr.max_rank),
+          static_cast<double>(o.gmres_block)};
 }
 
 // A value other than the default, of the parameter's type and within its range.
@@ -86,7 +87,7 @@ TEST_CASE("bem parameter table: each declared parameter is read into its own fie
   const std::vector<double> base = fingerprint(BemOptions{});
   std::set<std::size_t> fields;
   const auto specs = bem_options_table().specs();
-  REQUIRE(specs.size() == 23);
+  REQUIRE(specs.size() == 24);
   for (const ParamSpec& spec : specs) {
     const std::string yaml = spec.name + ": " + other_value(spec);
     INFO(yaml);
