@@ -73,6 +73,8 @@ const ParamTable<CrystalNumerics>& crystal_numerics_params() {
                    "8 x 8 point sample)")
           .optional_number("resolution_nm", &C::resolution_nm, "nm", "the builder's (10)", Limits::positive(),
                            "production grid step of this crystal")
+          .optional_number("k_step_per_um", &C::k_step_per_um, "1/um", "the builder's (0.5)", Limits::positive(),
+                           "production Bloch-k grid step of this crystal (thin shells: 0.25, rcwa NOTES.md §4)")
           .integer("grazing_anchors", &C::grazing_anchors, "1", 2, Limits::closed(1, 5), kAnchorsDoc);
   return table;
 }
@@ -91,7 +93,7 @@ BuildPlan plan_build(const BuilderParams& p, const CrystalCell& cell) {
   const CrystalNumerics numerics = crystal_numerics(cell);
   BuildPlan plan;
   Options& o = plan.options;
-  o.k_step_per_um = p.k_step_per_um.value_or(preview ? 1.0 : 0.5);
+  o.k_step_per_um = p.k_step_per_um.value_or(preview ? 1.0 : numerics.k_step_per_um.value_or(0.5));
   o.threads = p.threads;
   o.sim.pml_cells = p.pml_cells;
   o.sim.kz_min = p.kz_min;

@@ -41,6 +41,7 @@ struct CrystalNumerics {
   bool dispersion_correction = false;
   bool exact_fill = false;
   std::optional<double> resolution_nm;  // production grid step of this crystal; unset: 10 nm
+  std::optional<double> k_step_per_um;  // production Bloch-k step of this crystal; unset: 0.5 /µm
   int grazing_anchors = 2;
 };
 const ParamTable<CrystalNumerics>& crystal_numerics_params();

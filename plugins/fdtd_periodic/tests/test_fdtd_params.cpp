@@ -121,6 +121,7 @@ TEST_CASE("crystal sections: the builder reads its own fdtd_periodic section, co
     CHECK(n.dispersion_correction == peacock);
     CHECK(n.exact_fill == peacock);
     CHECK(n.resolution_nm.has_value() == (cc.name == "peacock-cyan"));
+    CHECK(n.k_step_per_um.has_value() == magpie);  // thin shells: 0.25/µm (rcwa NOTES.md §4)
     CHECK(cc.builder_sections.size() == (magpie || peacock ? 1u : 0u));
   }
   CHECK(*fdtd_table::crystal_numerics(load_crystal_cell(crystal_file("peacock-cyan"))).resolution_nm == 7.6);
@@ -139,6 +140,14 @@ TEST_CASE("crystal sections: the builder reads its own fdtd_periodic section, co
   CHECK(peacock.options.nx == 21);  // round(160 / 7.6)
   CHECK(peacock.options.sim.exact_fill);
   CHECK(peacock.options.grazing_anchors == 3);
+  CHECK(peacock.options.k_step_per_um == 0.5);
+  // The crystal's Bloch-k step applies at production only; an explicit builder option wins.
+  const CrystalCell magpie = load_crystal_cell(crystal_file("magpie-blue"));
+  CHECK(fdtd_table::plan_build(fdtd_table::builder_params().defaults(), magpie).options.k_step_per_um == 0.25);
+  CHECK(fdtd_table::plan_build(preview, magpie).options.k_step_per_um == 1.0);
+  fdtd_table::BuilderParams explicit_step = fdtd_table::builder_params().defaults();
+  explicit_step.k_step_per_um = 0.5;
+  CHECK(fdtd_table::plan_build(explicit_step, magpie).options.k_step_per_um == 0.5);
 
   auto builder = registry().create_named<TableBuilder>("fdtd_periodic", ParamView{}, registry().context());
   {  // a typo inside the section: the builder's table reports it at its line
