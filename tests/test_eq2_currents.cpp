@@ -7,6 +7,7 @@
 // reference columns.
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
